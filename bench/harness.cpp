@@ -1,0 +1,135 @@
+#include "bench/harness.hpp"
+
+#include <sys/utsname.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include <benchmark/benchmark.h>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "app/gpu_args.hpp"
+#include "bench/suites.hpp"
+
+namespace echosim::bench {
+
+const std::vector<Suite>& suites()
+{
+    static const std::vector<Suite> all = {
+        {"render", "headless frame of the default scene (offscreen, Vulkan)", register_render},
+    };
+    return all;
+}
+
+namespace {
+
+std::string cpu_model()
+{
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "unknown";
+}
+
+nlohmann::json machine(const std::string& gpu)
+{
+    utsname u{};
+    uname(&u);
+    char date[32];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+    return {{"cpu", cpu_model()},
+            {"cores", std::thread::hardware_concurrency()},
+            {"os", std::string(u.sysname) + " " + u.release},
+            {"gpu", gpu},
+            {"date", date}};
+}
+
+// Collects Google Benchmark's runs instead of printing them.
+class Collector : public benchmark::BenchmarkReporter {
+public:
+    bool ReportContext(const Context&) override { return true; }
+    void ReportRuns(const std::vector<Run>& runs) override
+    {
+        for (const Run& run : runs) {
+            if (run.error_occurred) {
+                errors.push_back(run.benchmark_name() + ": " + run.error_message);
+                continue;
+            }
+            nlohmann::json row;
+            row["name"] = run.benchmark_name();
+            row["ms_per_iteration"] = run.GetAdjustedRealTime() * (run.time_unit == benchmark::kMillisecond ? 1.0 : 1e-6);
+            row["iterations"] = run.iterations;
+            for (const auto& [key, counter] : run.counters) row[key] = counter.value;
+            rows.push_back(row);
+            std::printf("  %-34s %10.3f ms %8lld it", run.benchmark_name().c_str(), double(row["ms_per_iteration"]),
+                        static_cast<long long>(run.iterations));
+            for (const auto& [key, counter] : run.counters) std::printf("  %s=%g", key.c_str(), counter.value);
+            std::printf("\n");
+            std::fflush(stdout);
+        }
+    }
+    std::vector<nlohmann::json> rows;
+    std::vector<std::string> errors;
+};
+
+}  // namespace
+}  // namespace echosim::bench
+
+namespace echosim::app {
+
+int run_bench(const BenchArgs& args)
+{
+    using namespace echosim::bench;
+    std::vector<const Suite*> chosen;
+    for (const Suite& s : suites())
+        if (args.names.empty() || std::find(args.names.begin(), args.names.end(), s.name) != args.names.end())
+            chosen.push_back(&s);
+    for (const std::string& n : args.names)
+        if (std::none_of(suites().begin(), suites().end(), [&](const Suite& s) { return s.name == n; })) {
+            std::string known;
+            for (const Suite& s : suites()) known += " " + s.name;
+            std::fprintf(stderr, "echosim bench: unknown benchmark '%s'; known:%s\n", n.c_str(), known.c_str());
+            return kExitBadInput;
+        }
+
+    SuiteOptions options{context_options(args.gpu), args.min_time_s};
+    nlohmann::json report = nlohmann::json::array();
+    int status = kExitOk;
+    for (const Suite* suite : chosen) {
+        std::string gpu_name;
+        {
+            gpu::Context probe(options.gpu);
+            gpu_name = probe.device_name();
+        }
+        std::printf("%s: %s on %s\n", suite->name.c_str(), suite->what.c_str(), gpu_name.c_str());
+        benchmark::ClearRegisteredBenchmarks();
+        std::shared_ptr<void> keep = suite->register_benchmarks(options);
+        Collector collector;
+        benchmark::RunSpecifiedBenchmarks(&collector);
+        keep.reset();
+        for (const auto& e : collector.errors) {
+            std::fprintf(stderr, "echosim bench: %s\n", e.c_str());
+            status = kExitFailure;
+        }
+        report.push_back({{"bench", suite->name}, {"machine", machine(gpu_name)}, {"results", collector.rows}});
+    }
+    if (!args.json.empty()) {
+        std::ofstream out(args.json);
+        if (!out) {
+            std::fprintf(stderr, "echosim bench: --json %s: cannot open for writing\n", args.json.c_str());
+            return kExitBadInput;
+        }
+        // one suite: its object as DESIGN.md shows it; several: an array of them
+        out << (report.size() == 1 ? report[0] : report).dump(2) << "\n";
+    }
+    return status;
+}
+
+}  // namespace echosim::app

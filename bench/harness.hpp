@@ -1,0 +1,30 @@
+// The benchmark harness behind `echosim bench`: Google Benchmark measures (warm-up, iteration count,
+// real time), and this harness turns its runs into DESIGN.md's table and JSON
+// ({"bench": NAME, "machine": {...}, "results": [...]}). Each suite registers its benchmarks and
+// reports its figures as Google Benchmark counters, which become the JSON row's fields.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpu/context.hpp"
+
+namespace echosim::bench {
+
+struct SuiteOptions {
+    gpu::ContextOptions gpu;
+    double min_time_s = 1.0;
+};
+
+struct Suite {
+    std::string name;
+    std::string what;  // one line for the table header
+    // Registers the suite's benchmarks; what it returns (contexts, scenes) lives until they ran.
+    std::function<std::shared_ptr<void>(const SuiteOptions&)> register_benchmarks;
+};
+
+const std::vector<Suite>& suites();
+
+}  // namespace echosim::bench

@@ -1,0 +1,12 @@
+// The suites `echosim bench` knows; each lives in its own file.
+#pragma once
+
+#include <memory>
+
+#include "bench/harness.hpp"
+
+namespace echosim::bench {
+
+std::shared_ptr<void> register_render(const SuiteOptions& options);
+
+}  // namespace echosim::bench

@@ -1,0 +1,26 @@
+// Bindings of compute/log_compress.comp, shared with engine/echo/log_compress.cpp (the CPU
+// reference and the dispatcher), so both sides read one definition of the parameters.
+#ifndef ECHOSIM_LOG_COMPRESS_BINDINGS_H
+#define ECHOSIM_LOG_COMPRESS_BINDINGS_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace echosim::kernels {
+using uint = std::uint32_t;
+#endif
+
+#define LOG_COMPRESS_GROUP_SIZE 64
+#define LOG_COMPRESS_ENVELOPE_BINDING 0  // float per pixel: echo envelope amplitude (linear, >= 0)
+#define LOG_COMPRESS_IMAGE_BINDING 1     // uint per pixel: RGBA8 grey, alpha 255
+
+struct LogCompressParams {
+    uint pixel_count;
+    float reference;         // envelope amplitude shown at 0 dB (full white before gain)
+    float gain_db;           // overall gain [dB]
+    float dynamic_range_db;  // dB below the reference that map to black
+};
+
+#ifdef __cplusplus
+}  // namespace echosim::kernels
+#endif
+#endif

@@ -1,0 +1,146 @@
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <GLFW/glfw3.h>
+
+#include "app/commands.hpp"
+#include "app/default_scene.hpp"
+#include "app/gpu_args.hpp"
+#include "gpu/window.hpp"
+
+namespace echosim::app {
+namespace {
+
+// What the mouse and keyboard did since the last frame; filled by GLFW callbacks on the main thread.
+struct Controls {
+    bool dragging = false;
+    double last_x = 0, last_y = 0;
+    double d_x = 0, d_y = 0;
+    double scroll = 0;
+    bool toggle_fullscreen = false;
+};
+
+Controls& controls_of(GLFWwindow* w) { return *static_cast<Controls*>(glfwGetWindowUserPointer(w)); }
+
+void install_callbacks(GLFWwindow* w, Controls* c)
+{
+    glfwSetWindowUserPointer(w, c);
+    glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
+        if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+        Controls& k = controls_of(win);
+        k.dragging = action == GLFW_PRESS;
+        glfwGetCursorPos(win, &k.last_x, &k.last_y);
+    });
+    glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
+        Controls& k = controls_of(win);
+        if (k.dragging) {
+            k.d_x += x - k.last_x;
+            k.d_y += y - k.last_y;
+        }
+        k.last_x = x;
+        k.last_y = y;
+    });
+    glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) { controls_of(win).scroll += dy; });
+    glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int) {
+        if (action != GLFW_PRESS) return;
+        if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(win, GLFW_TRUE);
+        if (key == GLFW_KEY_F11 || (key == GLFW_KEY_F && !controls_of(win).dragging)) controls_of(win).toggle_fullscreen = true;
+    });
+}
+
+// The smoke test's script: resize, minimise, restore, go fullscreen and back, at fixed frames.
+void exercise(gpu::Window& window, int frame, int width, int height)
+{
+    switch (frame) {
+    case 10: glfwSetWindowSize(window.handle(), std::max(width / 2, 64), std::max(height / 2, 64)); break;
+    case 20: glfwIconifyWindow(window.handle()); break;
+    case 24: glfwRestoreWindow(window.handle()); break;
+    case 30: window.set_fullscreen(true); break;
+    case 40: window.set_fullscreen(false); break;
+    case 50: glfwSetWindowSize(window.handle(), width + 37, height + 21); break;
+    default: break;
+    }
+}
+
+}  // namespace
+
+int run_window(const RunArgs& args)
+{
+    const gpu::DisplayProbe display = gpu::probe_display();
+    if (!display.available) {
+        std::fprintf(stderr,
+                     "echosim run: %s.\n"
+                     "  The simulator needs a display for its window. Without one, render headless:\n"
+                     "    echosim render --out frame.png\n",
+                     display.reason.c_str());
+        return kExitFailure;
+    }
+    if (args.width < 64 || args.height < 64 || args.width > 7680 || args.height > 4320) {
+        std::fprintf(stderr, "echosim run: --width/--height %dx%d outside 64x64..7680x4320\n", args.width, args.height);
+        return kExitBadInput;
+    }
+
+    gpu::Window window({args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"});
+    gpu::ContextOptions options = context_options(args.gpu);
+    options.instance_extensions = gpu::Window::required_instance_extensions();
+    options.can_present = &gpu::Window::can_present;
+    int presented = 0;
+    std::uint32_t swapchains = 0;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        gpu::Context ctx(options);
+        messages = ctx.validation_counter();
+        DefaultScene scene;
+        gpu::WindowPresenter presenter(ctx, window);
+        gpu::Renderer renderer(ctx, presenter.format(), scene.meshes());
+        std::printf("echosim run: %s, %ux%u; drag to orbit, scroll to zoom, arrows slide the probe, F11 fullscreen, Esc quits\n",
+                    ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
+
+        Controls controls;
+        install_callbacks(window.handle(), &controls);
+        float u = 0.5f, v = 0.5f;  // probe position on the patch
+        auto last = std::chrono::steady_clock::now();
+        int loop = 0;
+        while (!window.should_close() && (args.frames == 0 || presented < args.frames)) {
+            if (args.exercise) exercise(window, loop, args.width, args.height);
+            ++loop;
+            glfwPollEvents();
+            const auto now = std::chrono::steady_clock::now();
+            const float dt = std::min(0.1f, std::chrono::duration<float>(now - last).count());
+            last = now;
+
+            scene.camera.orbit(float(controls.d_x) * -0.005f, float(controls.d_y) * 0.005f);
+            scene.camera.zoom(float(std::pow(0.9, controls.scroll)));
+            controls.d_x = controls.d_y = controls.scroll = 0;
+            if (controls.toggle_fullscreen) window.set_fullscreen(!window.fullscreen());
+            controls.toggle_fullscreen = false;
+
+            // arrows slide the probe over the patch: 0.4 of the patch a second
+            GLFWwindow* w = window.handle();
+            const float step = 0.4f * dt;
+            u += step * float((glfwGetKey(w, GLFW_KEY_DOWN) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_UP) == GLFW_PRESS));
+            v += step * float((glfwGetKey(w, GLFW_KEY_RIGHT) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_LEFT) == GLFW_PRESS));
+            u = std::clamp(u, 0.0f, 1.0f);
+            v = std::clamp(v, 0.0f, 1.0f);
+            scene.probe_pose = scene.leg.probe_rest_pose(u, v);
+
+            if (presenter.draw(renderer, scene.frame_view()))
+                ++presented;
+            else
+                glfwWaitEventsTimeout(0.05);  // minimised: do not spin
+            if (args.exercise && loop > 10000) break;  // a window system that never shows the window
+        }
+        swapchains = presenter.swapchain_generation();
+    }
+    std::printf("echosim run: presented %d frames, swapchain created %u times\n", presented, swapchains);
+    const std::uint32_t n = messages->load();
+    if (n > 0) {
+        std::fprintf(stderr, "echosim run: Vulkan validation reported %u message(s)\n", n);
+        return kExitValidation;
+    }
+    return kExitOk;
+}
+
+}  // namespace echosim::app

@@ -1,0 +1,50 @@
+// The subcommands of the `echosim` binary (DESIGN.md §4). Each validates its input and returns the
+// process exit code: 0 success, 1 runtime failure, 2 bad input, 3 Vulkan validation messages.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace echosim::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitValidation = 3;
+
+struct GpuArgs {
+    std::string gpu;          // --gpu NAME, else ECHOSIM_GPU
+    bool validation = false;  // --validation, else ECHOSIM_VALIDATION or a debug build
+};
+
+struct RenderArgs {
+    GpuArgs gpu;
+    std::filesystem::path out;
+    std::uint32_t width = 1920;
+    std::uint32_t height = 1080;
+    std::string pose;  // empty: the probe rests on the patch centre
+};
+int run_render(const RenderArgs& args);
+
+struct RunArgs {
+    GpuArgs gpu;
+    int width = 1600;
+    int height = 900;
+    bool fullscreen = false;
+    int frames = 0;         // stop after this many presented frames (0: until the window closes)
+    bool exercise = false;  // resize, minimise and toggle fullscreen along the way (smoke tests)
+};
+int run_window(const RunArgs& args);
+
+struct BenchArgs {
+    GpuArgs gpu;
+    std::vector<std::string> names;  // empty: all
+    std::filesystem::path json;
+    double min_time_s = 1.0;
+};
+int run_bench(const BenchArgs& args);
+
+}  // namespace echosim::app

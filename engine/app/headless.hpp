@@ -1,0 +1,23 @@
+// One headless frame, end to end: context, renderer, offscreen presenter, readback. Used by
+// `echosim render`, the render tests and the benchmarks.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "app/default_scene.hpp"
+#include "gpu/context.hpp"
+#include "io/png.hpp"
+
+namespace echosim::app {
+
+struct HeadlessFrame {
+    io::RgbaImage image;
+    std::string device;                   // the Vulkan device that drew it
+    std::uint32_t validation_messages = 0;
+};
+
+HeadlessFrame render_headless(const gpu::ContextOptions& options, const DefaultScene& scene, std::uint32_t width,
+                              std::uint32_t height);
+
+}  // namespace echosim::app

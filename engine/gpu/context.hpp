@@ -1,0 +1,77 @@
+// The first Vulkan layer: instance, validation messenger, physical device, logical device and the
+// one queue family echosim uses for graphics, compute, transfer and (in a window) presentation.
+// Everything above it (resources, presenters, renderer, compute kernels) takes a Context&.
+//
+// Validation: when enabled, every warning or error the Khronos layer reports is printed and
+// counted; tests assert the count stays zero. A Context is used from one thread at a time.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace echosim::gpu {
+
+struct ContextOptions {
+    bool validation = false;
+    std::string gpu;  // forced device name (see device_selection.hpp); empty: best available
+    std::vector<std::string> instance_extensions;  // e.g. the window system's surface extensions
+    // When set, only queue families for which this returns true are used (window presentation).
+    std::function<bool(VkInstance, VkPhysicalDevice, std::uint32_t family)> can_present;
+
+    // Validation on in debug builds or when ECHOSIM_VALIDATION=1; GPU from ECHOSIM_GPU.
+    static ContextOptions from_environment();
+};
+
+class Context {
+public:
+    explicit Context(ContextOptions options);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physical_device() const { return physical_device_; }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    std::uint32_t queue_family() const { return queue_family_; }
+    const std::string& device_name() const { return device_name_; }
+    VkPhysicalDeviceType device_type() const { return device_type_; }
+    const VkPhysicalDeviceLimits& limits() const { return limits_; }
+    bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
+    // Validation warnings and errors reported since the context was made. The counter outlives the
+    // context, so a caller can also see what the layer reports while the device is destroyed
+    // (leaked objects).
+    std::uint32_t validation_messages() const { return validation_messages_->load(); }
+    std::shared_ptr<const std::atomic<std::uint32_t>> validation_counter() const { return validation_messages_; }
+
+    std::uint32_t find_memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags wanted) const;
+
+private:
+    static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                                VkDebugUtilsMessageTypeFlagsEXT types,
+                                                                const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                                void* user);
+    void pick_physical_device(const ContextOptions& options);
+    void create_device(bool for_window);
+    void destroy();
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    std::uint32_t queue_family_ = 0;
+    std::string device_name_;
+    VkPhysicalDeviceType device_type_ = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+    VkPhysicalDeviceLimits limits_{};
+    VkPhysicalDeviceMemoryProperties memory_{};
+    std::shared_ptr<std::atomic<std::uint32_t>> validation_messages_ = std::make_shared<std::atomic<std::uint32_t>>(0);
+};
+
+}  // namespace echosim::gpu

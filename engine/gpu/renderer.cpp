@@ -1,0 +1,286 @@
+#include "gpu/renderer.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "echosim_graphics_shaders.hpp"
+#include "gpu/vk_error.hpp"
+#include "mesh_bindings.h"
+
+namespace echosim::gpu {
+namespace {
+
+using mesh_bindings::DrawPush;
+using mesh_bindings::FrameUniforms;
+
+template <class T>
+std::span<const std::byte> bytes_of(std::span<const T> s)
+{
+    return std::as_bytes(s);
+}
+
+}  // namespace
+
+VkShaderModule create_shader_module(VkDevice device, std::span<const std::uint32_t> spirv, const char* name)
+{
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = spirv.size_bytes();
+    info.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    check(vkCreateShaderModule(device, &info, nullptr, &module), (std::string("vkCreateShaderModule ") + name).c_str());
+    return module;
+}
+
+Renderer::Renderer(const Context& ctx, VkFormat color_format, const SceneMeshes& meshes)
+    : ctx_(ctx), color_format_(color_format)
+{
+    const VkDevice dev = ctx.device();
+    try {
+        // static geometry goes to device-local memory once
+        static_mesh_.vertices = upload_buffer(ctx, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        static_mesh_.indices = upload_buffer(ctx, bytes_of(std::span(meshes.static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        static_mesh_.index_count = std::uint32_t(meshes.static_mesh.indices.size());
+        probe_.vertices = upload_buffer(ctx, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        probe_.indices = upload_buffer(ctx, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        probe_.index_count = std::uint32_t(meshes.probe.indices.size());
+        patch_indices_ = upload_buffer(ctx, bytes_of(std::span(meshes.patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        patch_index_count_ = std::uint32_t(meshes.patch_rest.indices.size());
+        patch_vertex_count_ = meshes.patch_rest.vertices.size();
+
+        VkDescriptorSetLayoutBinding binding{};
+        binding.binding = MESH_FRAME_BINDING;
+        binding.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        binding.descriptorCount = 1;
+        binding.stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+        VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        set_info.bindingCount = 1;
+        set_info.pBindings = &binding;
+        check(vkCreateDescriptorSetLayout(dev, &set_info, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
+
+        VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight};
+        VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        pool_info.maxSets = kFramesInFlight;
+        pool_info.poolSizeCount = 1;
+        pool_info.pPoolSizes = &pool_size;
+        check(vkCreateDescriptorPool(dev, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
+
+        for (Slot& slot : slots_) {
+            slot.uniforms = Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
+            slot.patch_vertices = Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
+                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
+            slot.patch_vertices.write(bytes_of(std::span(meshes.patch_rest.vertices)));
+            VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+            alloc.descriptorPool = descriptor_pool_;
+            alloc.descriptorSetCount = 1;
+            alloc.pSetLayouts = &set_layout_;
+            check(vkAllocateDescriptorSets(dev, &alloc, &slot.descriptors), "vkAllocateDescriptorSets");
+            VkDescriptorBufferInfo buffer_info{slot.uniforms.handle(), 0, sizeof(FrameUniforms)};
+            VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            write.dstSet = slot.descriptors;
+            write.dstBinding = MESH_FRAME_BINDING;
+            write.descriptorCount = 1;
+            write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            write.pBufferInfo = &buffer_info;
+            vkUpdateDescriptorSets(dev, 1, &write, 0, nullptr);
+        }
+        create_pipeline();
+    } catch (...) {
+        destroy();
+        throw;
+    }
+}
+
+Renderer::~Renderer() { destroy(); }
+
+void Renderer::destroy()
+{
+    const VkDevice dev = ctx_.device();
+    // a presenter may still have frames in flight that use these objects
+    vkDeviceWaitIdle(dev);
+    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
+    if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
+    if (descriptor_pool_) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);
+    if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+    pipeline_layout_ = VK_NULL_HANDLE;
+    descriptor_pool_ = VK_NULL_HANDLE;
+    set_layout_ = VK_NULL_HANDLE;
+}
+
+void Renderer::create_pipeline()
+{
+    const VkDevice dev = ctx_.device();
+    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)};
+    VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layout_info.setLayoutCount = 1;
+    layout_info.pSetLayouts = &set_layout_;
+    layout_info.pushConstantRangeCount = 1;
+    layout_info.pPushConstantRanges = &push;
+    check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout");
+
+    VkShaderModule vert = create_shader_module(dev, shaders::mesh_vert, "mesh.vert");
+    VkShaderModule frag = VK_NULL_HANDLE;
+    try {
+        frag = create_shader_module(dev, shaders::mesh_frag, "mesh.frag");
+    } catch (...) {
+        vkDestroyShaderModule(dev, vert, nullptr);
+        throw;
+    }
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr};
+    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr};
+
+    VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription attributes[3] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, normal)},
+        {2, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, color)},
+    };
+    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertex_input.vertexBindingDescriptionCount = 1;
+    vertex_input.pVertexBindingDescriptions = &vertex_binding;
+    vertex_input.vertexAttributeDescriptionCount = 3;
+    vertex_input.pVertexAttributeDescriptions = attributes;
+
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    // the builders do not promise a winding: shade both sides (the fragment shader flips the normal)
+    raster.cullMode = VK_CULL_MODE_NONE;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = VK_TRUE;
+    depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    VkPipelineColorBlendAttachmentState blend_attachment{};
+    blend_attachment.colorWriteMask =
+        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = 1;
+    blend.pAttachments = &blend_attachment;
+    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = 2;
+    dynamic.pDynamicStates = dynamic_states;
+
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachmentFormats = &color_format_;
+    rendering.depthAttachmentFormat = depth_format_;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.pNext = &rendering;
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertex_input;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = pipeline_layout_;
+    const VkResult result = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+    vkDestroyShaderModule(dev, vert, nullptr);
+    vkDestroyShaderModule(dev, frag, nullptr);
+    check(result, "vkCreateGraphicsPipelines (mesh)");
+}
+
+void Renderer::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
+                    const glm::mat4& model, const glm::vec4& tint)
+{
+    const DrawPush push{model, tint};
+    vkCmdPushConstants(cmd, pipeline_layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+}
+
+void Renderer::record(VkCommandBuffer cmd, int slot_index, const RenderTarget& target, const FrameView& view)
+{
+    Slot& slot = slots_.at(std::size_t(slot_index));
+    if (view.patch_vertices.size() != patch_vertex_count_)
+        throw std::invalid_argument("Renderer::record: patch has " + std::to_string(view.patch_vertices.size()) +
+                                    " vertices, the renderer was built for " + std::to_string(patch_vertex_count_));
+    if (slot.depth.extent().width != target.extent.width || slot.depth.extent().height != target.extent.height)
+        slot.depth = Image(ctx_, target.extent, depth_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+
+    // per-frame data: the slot's fence has signalled, so the GPU no longer reads these buffers
+    const float aspect = float(target.extent.width) / float(std::max(1u, target.extent.height));
+    FrameUniforms frame{};
+    frame.view_proj = view.camera.projection(aspect) * view.camera.view();
+    frame.eye = glm::vec4(view.camera.eye(), 1.0f);
+    // an examination-room key light from above the patient's left shoulder, a cool fill from the
+    // other side, and dim ambient; the colours are linear, so these are modest numbers
+    frame.key_dir = glm::vec4(glm::normalize(glm::vec3(-0.45f, 0.80f, -0.40f)), 0.85f);
+    frame.fill_dir = glm::vec4(glm::normalize(glm::vec3(0.6f, 0.4f, 0.6f)), 0.25f);
+    frame.sky = glm::vec4(0.16f, 0.17f, 0.20f, 1.0f);
+    frame.ground = glm::vec4(0.04f, 0.035f, 0.035f, 1.0f);
+    slot.uniforms.write(std::as_bytes(std::span(&frame, 1)));
+    slot.patch_vertices.write(std::as_bytes(view.patch_vertices));
+
+    transition(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE,
+               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    transition(cmd, slot.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = target.view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color.clearValue.color = {{0.012f, 0.014f, 0.018f, 1.0f}};
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = slot.depth.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, target.extent};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &color;
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+
+    const VkViewport vp{0, 0, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, target.extent};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, MESH_FRAME_SET, 1, &slot.descriptors, 0, nullptr);
+
+    const glm::mat4 identity(1.0f);
+    draw(cmd, static_mesh_.vertices.handle(), static_mesh_.indices.handle(), static_mesh_.index_count, identity,
+         glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
+    // the patch carries ultrasound gel: same skin, glossier
+    draw(cmd, slot.patch_vertices.handle(), patch_indices_.handle(), patch_index_count_, identity,
+         glm::vec4(1.0f, 1.0f, 1.0f, 0.75f));
+    if (view.show_probe)
+        draw(cmd, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
+             glm::vec4(1.0f, 1.0f, 1.0f, 0.55f));
+    vkCmdEndRendering(cmd);
+
+    transition(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, target.final_layout,
+               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, target.next_stage,
+               target.next_access);
+}
+
+}  // namespace echosim::gpu

@@ -1,0 +1,111 @@
+#include "io/png.hpp"
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <png.h>
+
+namespace echosim::io {
+namespace {
+
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why)
+{
+    throw std::runtime_error(path.string() + ": " + why);
+}
+
+void on_png_error(png_structp png, png_const_charp message)
+{
+    auto* error = static_cast<std::string*>(png_get_error_ptr(png));
+    *error = message;
+    png_longjmp(png, 1);
+}
+
+void on_png_warning(png_structp, png_const_charp) {}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& path, const RgbaImage& image)
+{
+    if (image.width == 0 || image.height == 0 || image.pixels.size() != std::size_t(image.width) * image.height * 4)
+        fail(path, "refusing to write an empty or inconsistent image");
+    std::filesystem::path tmp = path;
+    tmp += ".partial";
+    std::string error;
+    {
+        File f(std::fopen(tmp.c_str(), "wb"));
+        if (!f) fail(path, "cannot open for writing: " + std::generic_category().message(errno));
+        png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, on_png_error, on_png_warning);
+        png_infop info = png ? png_create_info_struct(png) : nullptr;
+        if (!png || !info) {
+            png_destroy_write_struct(&png, &info);
+            fail(path, "libpng could not start");
+        }
+        if (setjmp(png_jmpbuf(png))) {
+            png_destroy_write_struct(&png, &info);
+            f.reset();
+            std::filesystem::remove(tmp);
+            fail(path, "libpng: " + error);
+        }
+        png_init_io(png, f.get());
+        png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_set_compression_level(png, 3);  // big frames: favour speed over the last few per cent
+        png_write_info(png, info);
+        for (std::uint32_t y = 0; y < image.height; ++y) png_write_row(png, image.at(0, y));
+        png_write_end(png, nullptr);
+        png_destroy_write_struct(&png, &info);
+        if (std::fflush(f.get()) != 0) fail(path, "write failed: " + std::generic_category().message(errno));
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp);
+        fail(path, "cannot rename the finished file into place: " + ec.message());
+    }
+}
+
+RgbaImage read_png(const std::filesystem::path& path)
+{
+    File f(std::fopen(path.c_str(), "rb"));
+    if (!f) fail(path, "cannot open: " + std::generic_category().message(errno));
+    png_byte sig[8];
+    if (std::fread(sig, 1, 8, f.get()) != 8 || png_sig_cmp(sig, 0, 8) != 0) fail(path, "not a PNG file");
+    std::string error;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, on_png_error, on_png_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!png || !info) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        fail(path, "libpng could not start");
+    }
+    RgbaImage image;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        fail(path, "corrupt PNG: " + error);
+    }
+    png_init_io(png, f.get());
+    png_set_sig_bytes(png, 8);
+    png_read_info(png, info);
+    // whatever the file holds, hand back 8-bit RGBA
+    png_set_expand(png);
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+    png_read_update_info(png, info);
+    image.width = png_get_image_width(png, info);
+    image.height = png_get_image_height(png, info);
+    image.pixels.resize(std::size_t(image.width) * image.height * 4);
+    for (std::uint32_t y = 0; y < image.height; ++y) png_read_row(png, image.at(0, y), nullptr);
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return image;
+}
+
+}  // namespace echosim::io

@@ -1,0 +1,35 @@
+#include "scene/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace echosim::scene {
+
+glm::vec3 OrbitCamera::eye() const
+{
+    // horizontal directions: +z towards the head, +x to the patient's left
+    const glm::vec3 horizontal = std::sin(yaw) * glm::vec3(1, 0, 0) - std::cos(yaw) * glm::vec3(0, 0, 1);
+    return target + distance * (std::cos(pitch) * horizontal + std::sin(pitch) * up);
+}
+
+glm::mat4 OrbitCamera::view() const { return glm::lookAt(eye(), target, up); }
+
+glm::mat4 OrbitCamera::projection(float aspect) const
+{
+    // near and far bracket a room-sized scene in millimetres; depth maps to [0, 1]
+    glm::mat4 p = glm::perspectiveRH_ZO(fov_y, aspect, 20.0f, 20000.0f);
+    p[1][1] *= -1.0f;  // Vulkan's clip space has y pointing down
+    return p;
+}
+
+void OrbitCamera::orbit(float d_yaw, float d_pitch)
+{
+    yaw += d_yaw;
+    pitch = std::clamp(pitch + d_pitch, 0.05f, 1.55f);
+}
+
+void OrbitCamera::zoom(float factor) { distance = std::clamp(distance * factor, 200.0f, 4000.0f); }
+
+}  // namespace echosim::scene

@@ -1,0 +1,28 @@
+// An orbit camera around a target point. "Up" on screen is the patient's anterior (-y in LPS),
+// since the patient lies supine on the table. Projection follows Vulkan: depth in [0, 1], y down.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace echosim::scene {
+
+struct OrbitCamera {
+    // default: the examiner's view of the right thigh from beside the knee, the probe in the middle
+    glm::vec3 target{-70.0f, -20.0f, -190.0f};  // [mm]
+    float yaw = 0.95f;         // [rad] about the up axis; 0 looks from the feet towards the head
+    float pitch = 0.70f;       // [rad] above the table plane
+    float distance = 900.0f;   // [mm]
+    float fov_y = 0.65f;       // [rad]
+
+    static constexpr glm::vec3 up{0.0f, -1.0f, 0.0f};
+
+    glm::vec3 eye() const;
+    glm::mat4 view() const;
+    glm::mat4 projection(float aspect) const;
+
+    void orbit(float d_yaw, float d_pitch);  // pitch is kept between just above the table and overhead
+    void zoom(float factor);                 // distance kept within [200, 4000] mm
+};
+
+}  // namespace echosim::scene

@@ -1,0 +1,59 @@
+// The graphical model of the patient (paper §3.2, Fig. 5): a supine adult's legs on an exam table,
+// in world LPS millimetres. The right leg is examined; its anterior-medial thigh, over the femoral
+// vessels, carries the exam patch: a separate grid mesh whose vertices the dynamics will move every
+// frame, sampled from the same surface as the leg so that it fills the hole left for it exactly.
+//
+// Axes: +x patient's left, +y posterior (down, towards the table), +z superior (towards the head).
+// z = 0 is the groin crease; the knee is near z = -440, the ankle near z = -820.
+#pragma once
+
+#include "core/pose.hpp"
+#include "scene/mesh.hpp"
+#include "scene/tube.hpp"
+
+namespace echosim::scene {
+
+struct LegOptions {
+    int rings_per_span = 16;  // leg rings between two stations (about 8 mm apart on the thigh)
+    int segments = 96;        // vertices around a limb
+    int patch_refine = 4;     // patch vertices per leg cell edge
+};
+
+// The exam patch: a (rows x cols) vertex grid, row-major; rows run from superior to inferior along
+// the thigh, columns around it from medial towards anterior. Border vertices coincide with the leg.
+struct ExamPatch {
+    int rows = 0;
+    int cols = 0;
+    Mesh rest;          // rest shape; the renderer draws a copy whose positions change
+    float t0 = 0, t1 = 0;          // extent along the exam limb (tube parameter)
+    float theta0 = 0, theta1 = 0;  // extent around it [rad]
+};
+
+class LegModel {
+public:
+    explicit LegModel(const LegOptions& options = {});
+
+    const Tube& exam_limb() const { return right_leg_; }  // the right leg, thigh to ankle
+    const ExamPatch& patch() const { return patch_; }
+    // Everything that never moves: both legs less the patch, feet, the draped pelvis, the table.
+    const Mesh& static_mesh() const { return static_mesh_; }
+
+    // A probe resting on the skin at (u, v) in [0,1]^2 of the patch (u along the limb, v around),
+    // in transverse orientation: the array across the thigh, the beam along the inward normal.
+    Pose probe_rest_pose(float u, float v) const;
+
+private:
+    LegOptions options_;
+    Tube right_leg_, left_leg_, right_foot_, left_foot_, pelvis_;
+    ExamPatch patch_;
+    Mesh static_mesh_;
+};
+
+// The linear vascular probe in its own frame (origin at the centre of the face, +x along the array,
+// +y into the tissue, so the body extends towards -y): a face of 40 x 10 mm (x by z).
+Mesh make_linear_probe();
+
+inline constexpr float kProbeFaceWidthMm = 40.0f;
+inline constexpr float kProbeFaceThicknessMm = 10.0f;
+
+}  // namespace echosim::scene

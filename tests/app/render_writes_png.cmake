@@ -1,0 +1,18 @@
+# `echosim render` writes a PNG of the requested size, on lavapipe, with validation silent.
+file(REMOVE ${OUT})
+execute_process(COMMAND ${ECHOSIM} render --out ${OUT} --width 320 --height 200 --gpu cpu --validation
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "echosim render failed (${rc}):\n${out}${err}")
+endif()
+if(NOT EXISTS ${OUT})
+  message(FATAL_ERROR "echosim render reported success but ${OUT} is missing")
+endif()
+file(READ ${OUT} header LIMIT 24 HEX)
+# PNG signature, then IHDR with width 320 (0x140) and height 200 (0xc8)
+if(NOT header MATCHES "^89504e470d0a1a0a0000000d4948445200000140000000c8")
+  message(FATAL_ERROR "${OUT} is not a 320x200 PNG: ${header}")
+endif()
+if(NOT out MATCHES "wrote .*320x200")
+  message(FATAL_ERROR "echosim render did not say what it wrote:\n${out}")
+endif()

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Smoke test of the window: under Xvfb, `echosim run` presents frames while it is resized,
+# minimised and made fullscreen, then exits cleanly with the validation layer silent.
+set -euo pipefail
+echosim=$1
+command -v xvfb-run >/dev/null || { echo "xvfb-run missing: scripts/deps installs xvfb"; exit 1; }
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+set +e
+xvfb-run -a -s "-screen 0 1920x1080x24" "$echosim" run --frames 80 --exercise --width 800 --height 600 \
+  --gpu cpu --validation >"$log" 2>&1
+rc=$?
+set -e
+cat "$log"
+[[ $rc -eq 0 ]] || { echo "FAIL: echosim run exited $rc"; exit 1; }
+grep -q "presented 80 frames" "$log" || { echo "FAIL: did not present 80 frames"; exit 1; }
+# resize (frame 10), fullscreen (30), windowed (40), resize (50): the swapchain is remade each time
+created=$(sed -n 's/.*swapchain created \([0-9]*\) times.*/\1/p' "$log")
+[[ ${created:-0} -ge 3 ]] || { echo "FAIL: swapchain created ${created:-0} times, expected at least 3"; exit 1; }
+! grep -q "vulkan validation" "$log" || { echo "FAIL: validation messages"; exit 1; }
+echo "PASS"

@@ -1,0 +1,128 @@
+// Render tests: headless frames of the default scene on lavapipe, against a reference PNG and
+// against what the scene must show. Regenerate the references with scripts/update-references.
+#include <cstdlib>
+#include <filesystem>
+
+#include <glm/geometric.hpp>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "app/default_scene.hpp"
+#include "app/headless.hpp"
+#include "gpu/offscreen.hpp"
+#include "render/image_compare.hpp"
+#include "test_gpu.hpp"
+
+namespace echosim {
+namespace {
+
+constexpr std::uint32_t kWidth = 480, kHeight = 270;
+// lavapipe is deterministic for one Mesa version; the tolerance absorbs rasterisation and
+// rounding changes between Mesa releases without letting a moved or missing object through
+constexpr test::Tolerance kReferenceTolerance{12, 0.005};
+
+std::filesystem::path reference(const char* name) { return std::filesystem::path(ECHOSIM_REFERENCE_DIR) / name; }
+
+TEST(Render, DefaultViewMatchesReference)
+{
+    const app::DefaultScene scene;
+    const app::HeadlessFrame frame = app::render_headless(test::lavapipe_options(), scene, kWidth, kHeight);
+    EXPECT_EQ(frame.validation_messages, 0u);
+    const auto path = reference("default_view.png");
+    if (const char* update = std::getenv("ECHOSIM_UPDATE_REFERENCES"); update && *update == '1') {
+        io::write_png(path, frame.image);
+        GTEST_SKIP() << "reference regenerated: " << path;
+    }
+    ASSERT_TRUE(std::filesystem::exists(path)) << path << " missing: run scripts/update-references";
+    const auto cmp = test::compare(frame.image, io::read_png(path), kReferenceTolerance.max_channel_diff);
+    EXPECT_TRUE(within(cmp, kReferenceTolerance)) << cmp.describe();
+}
+
+// Renders the scene several ways in one context, as the window does frame after frame.
+class SceneRender : public testing::Test {
+protected:
+    SceneRender()
+        : ctx_(test::lavapipe_options()), presenter_(ctx_, {kWidth, kHeight}),
+          renderer_(ctx_, gpu::OffscreenPresenter::kFormat, scene_.meshes())
+    {
+    }
+    ~SceneRender() override { EXPECT_EQ(ctx_.validation_messages(), 0u); }
+
+    io::RgbaImage draw(const gpu::FrameView& view)
+    {
+        io::RgbaImage img;
+        presenter_.render(renderer_, view, &img);
+        return img;
+    }
+    // where a world point lands in the image [px]
+    glm::vec2 project(glm::vec3 world) const
+    {
+        glm::vec4 c = scene_.camera.projection(float(kWidth) / float(kHeight)) * scene_.camera.view() * glm::vec4(world, 1);
+        c /= c.w;
+        return {(c.x * 0.5f + 0.5f) * float(kWidth), (c.y * 0.5f + 0.5f) * float(kHeight)};
+    }
+    // changed pixels, and how many of them lie within `radius` px of `centre`
+    static std::pair<int, int> changes(const io::RgbaImage& a, const io::RgbaImage& b, glm::vec2 centre, float radius)
+    {
+        int all = 0, near = 0;
+        for (std::uint32_t y = 0; y < a.height; ++y)
+            for (std::uint32_t x = 0; x < a.width; ++x)
+                if (std::memcmp(a.at(x, y), b.at(x, y), 3) != 0) {
+                    ++all;
+                    near += glm::length(glm::vec2(float(x), float(y)) - centre) < radius;
+                }
+        return {all, near};
+    }
+
+    app::DefaultScene scene_;
+    gpu::Context ctx_;
+    gpu::OffscreenPresenter presenter_;
+    gpu::Renderer renderer_;
+};
+
+TEST_F(SceneRender, SameInputSameImage)
+{
+    const auto a = draw(scene_.frame_view());
+    const auto b = draw(scene_.frame_view());
+    EXPECT_EQ(a.pixels, b.pixels);
+}
+
+TEST_F(SceneRender, ProbeIsDrawnWhereItsPoseSays)
+{
+    gpu::FrameView view = scene_.frame_view();
+    const auto with = draw(view);
+    view.show_probe = false;
+    const auto without = draw(view);
+    // the probe's body is 190 mm long: around 40 px at this distance and size
+    const glm::vec2 at = project(scene_.probe_pose.position + scene_.probe_pose.axis_y() * -60.0f);
+    const auto [all, near] = changes(with, without, at, 60.0f);
+    EXPECT_GT(all, 150);
+    EXPECT_GT(double(near) / all, 0.95) << "the probe was drawn away from its pose";
+}
+
+TEST_F(SceneRender, PatchDeformationIsDrawn)
+{
+    const auto rest = draw(scene_.frame_view());
+    // push the patch's middle 12 mm into the thigh, as the probe will
+    const auto& patch = scene_.leg.patch();
+    for (int i = 0; i < patch.rows; ++i)
+        for (int j = 0; j < patch.cols; ++j) {
+            const float u = float(i) / float(patch.rows - 1) - 0.5f, v = float(j) / float(patch.cols - 1) - 0.5f;
+            auto& vert = scene_.patch[std::size_t(i * patch.cols + j)];
+            vert.position -= vert.normal * (12.0f * std::max(0.0f, 1.0f - 4.0f * (u * u + v * v)));
+        }
+    gpu::FrameView view = scene_.frame_view();
+    view.show_probe = false;
+    const auto pressed = draw(view);
+    view.patch_vertices = scene_.leg.patch().rest.vertices;
+    const auto rest_no_probe = draw(view);
+    const glm::vec2 centre = project(scene_.leg.probe_rest_pose(0.5f, 0.5f).position);
+    const auto [all, near] = changes(pressed, rest_no_probe, centre, 60.0f);
+    EXPECT_GT(all, 50);
+    EXPECT_GT(double(near) / all, 0.95);
+    EXPECT_NE(rest.pixels, pressed.pixels);
+}
+
+}  // namespace
+}  // namespace echosim

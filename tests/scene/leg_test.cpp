@@ -1,0 +1,83 @@
+#include "scene/leg.hpp"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace echosim::scene {
+namespace {
+
+TEST(LegModel, PatchBorderCoincidesWithTheLeg)
+{
+    const LegModel leg;
+    const ExamPatch& p = leg.patch();
+    ASSERT_GT(p.rows, 8);
+    ASSERT_GT(p.cols, 8);
+    ASSERT_EQ(p.rest.vertices.size(), std::size_t(p.rows * p.cols));
+    // every corner of the patch is a vertex of the static leg mesh (the hole's corner)
+    for (int corner : {0, p.cols - 1, (p.rows - 1) * p.cols, p.rows * p.cols - 1}) {
+        const glm::vec3 c = p.rest.vertices[std::size_t(corner)].position;
+        float nearest = 1e9f;
+        for (const auto& v : leg.static_mesh().vertices) nearest = std::min(nearest, glm::length(v.position - c));
+        EXPECT_LT(nearest, 1e-3f) << "corner " << corner;
+    }
+}
+
+TEST(LegModel, PatchSitsOnTheAnteriorMedialProximalThigh)
+{
+    const LegModel leg;
+    const Bounds b = bounds(leg.patch().rest);
+    const glm::vec3 size = b.max - b.min;
+    // about 120 mm along the thigh, below the groin (z = 0) and above mid-thigh
+    EXPECT_NEAR(size.z, 120.0f, 12.0f);
+    EXPECT_LT(b.max.z, 0.0f);
+    EXPECT_GT(b.min.z, -250.0f);
+    // right leg (x < 0 in LPS), facing anterior (-y) and medial (+x)
+    const Pose centre = leg.probe_rest_pose(0.5f, 0.5f);
+    EXPECT_LT(centre.position.x, 0.0f);
+    const glm::vec3 outward = -centre.axis_y();
+    EXPECT_LT(outward.y, -0.4f);
+    EXPECT_GT(outward.x, 0.3f);
+}
+
+TEST(LegModel, ProbeRestPoseTouchesTheSkinTransversely)
+{
+    const LegModel leg;
+    const ExamPatch& p = leg.patch();
+    const Pose pose = leg.probe_rest_pose(0.0f, 0.0f);
+    // the probe origin is the patch's first vertex, the beam goes into the limb
+    EXPECT_LT(glm::length(pose.position - p.rest.vertices[0].position), 1e-3f);
+    EXPECT_NEAR(glm::dot(pose.axis_y(), p.rest.vertices[0].normal), -1.0f, 1e-3f);
+    // transverse: the elevation axis runs along the thigh (mostly z)
+    EXPECT_GT(std::abs(pose.axis_z().z), 0.9f);
+}
+
+TEST(LinearProbe, FaceIs40By10Millimetres)
+{
+    const Mesh probe = make_linear_probe();
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (const auto& v : probe.vertices)
+        if (std::abs(v.position.y) < 1e-4f) {
+            lo = glm::min(lo, v.position);
+            hi = glm::max(hi, v.position);
+        }
+    EXPECT_NEAR(hi.x - lo.x, kProbeFaceWidthMm, 0.5f);
+    EXPECT_NEAR(hi.z - lo.z, kProbeFaceThicknessMm, 0.5f);
+    // the body extends away from the tissue
+    EXPECT_LT(bounds(probe).min.y, -100.0f);
+    EXPECT_LE(bounds(probe).max.y, 1e-4f);
+}
+
+TEST(Mesh, RecomputedNormalsOfAFlatGridPointUp)
+{
+    Mesh m;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m.vertices.push_back({{float(j), 0.0f, float(i)}, {}, {}});
+    for (std::uint32_t k : {0u, 3u, 4u, 0u, 4u, 1u}) m.indices.push_back(k);
+    recompute_normals(m);
+    EXPECT_NEAR(std::abs(m.vertices[0].normal.y), 1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace echosim::scene
