@@ -63,12 +63,12 @@ public:
                 continue;
             }
             nlohmann::json row;
-            row["name"] = run.benchmark_name();
+            row["name"] = run.run_name.function_name;
             row["ms_per_iteration"] = run.GetAdjustedRealTime() * (run.time_unit == benchmark::kMillisecond ? 1.0 : 1e-6);
             row["iterations"] = run.iterations;
             for (const auto& [key, counter] : run.counters) row[key] = counter.value;
             rows.push_back(row);
-            std::printf("  %-34s %10.3f ms %8lld it", run.benchmark_name().c_str(), double(row["ms_per_iteration"]),
+            std::printf("  %-34s %10.3f ms %8lld it", run.run_name.function_name.c_str(), double(row["ms_per_iteration"]),
                         static_cast<long long>(run.iterations));
             for (const auto& [key, counter] : run.counters) std::printf("  %s=%g", key.c_str(), counter.value);
             std::printf("\n");

@@ -151,8 +151,9 @@ void Renderer::create_pipeline()
     viewport.scissorCount = 1;
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.polygonMode = VK_POLYGON_MODE_FILL;
-    // the builders do not promise a winding: shade both sides (the fragment shader flips the normal)
-    raster.cullMode = VK_CULL_MODE_NONE;
+    // meshes wind counter-clockwise seen from outside (scene::orient_to_normals); Vulkan's y-down
+    // framebuffer and our y-flipped projection cancel, so front faces stay counter-clockwise
+    raster.cullMode = VK_CULL_MODE_BACK_BIT;
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
@@ -270,9 +271,9 @@ void Renderer::record(VkCommandBuffer cmd, int slot_index, const RenderTarget& t
     const glm::mat4 identity(1.0f);
     draw(cmd, static_mesh_.vertices.handle(), static_mesh_.indices.handle(), static_mesh_.index_count, identity,
          glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
-    // the patch carries ultrasound gel: same skin, glossier
+    // the patch carries ultrasound gel: same skin, a little glossier
     draw(cmd, slot.patch_vertices.handle(), patch_indices_.handle(), patch_index_count_, identity,
-         glm::vec4(1.0f, 1.0f, 1.0f, 0.75f));
+         glm::vec4(1.0f, 1.0f, 1.0f, 0.35f));
     if (view.show_probe)
         draw(cmd, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
              glm::vec4(1.0f, 1.0f, 1.0f, 0.55f));

@@ -8,11 +8,12 @@
 namespace echosim::scene {
 
 struct OrbitCamera {
-    // default: the examiner's view of the right thigh from beside the knee, the probe in the middle
-    glm::vec3 target{-70.0f, -20.0f, -190.0f};  // [mm]
-    float yaw = 0.95f;         // [rad] about the up axis; 0 looks from the feet towards the head
-    float pitch = 0.70f;       // [rad] above the table plane
-    float distance = 900.0f;   // [mm]
+    // default: the examiner's view, standing at the patient's right beside the knee, looking at
+    // the probe on the right thigh with the knee, the lower legs and the other leg in sight
+    glm::vec3 target{-40.0f, -40.0f, -260.0f};  // [mm]
+    float yaw = -0.30f;        // [rad] about the up axis; 0 looks from the feet towards the head
+    float pitch = 1.05f;       // [rad] above the table plane
+    float distance = 1000.0f;  // [mm]
     float fov_y = 0.65f;       // [rad]
 
     static constexpr glm::vec3 up{0.0f, -1.0f, 0.0f};

@@ -126,17 +126,38 @@ LegModel::LegModel(const LegOptions& options)
     patch_.t1 = float(ring1) / float(options.rings_per_span);
     patch_.theta0 = float(seg0) * seg_angle;
     patch_.theta1 = float(seg1) * seg_angle;
-    for (int i = 0; i < patch_.rows; ++i)
-        for (int j = 0; j < patch_.cols; ++j) {
-            const float t = patch_.t0 + (patch_.t1 - patch_.t0) * float(i) / float(patch_.rows - 1);
-            const float th = patch_.theta0 + (patch_.theta1 - patch_.theta0) * float(j) / float(patch_.cols - 1);
-            patch_.rest.vertices.push_back({right_leg_.point(t, th), right_leg_.outward_normal(t, th), kSkin});
+    const float dt = 1.0f / float(options.rings_per_span);
+    auto surface = [&](int i, int j) {
+        // fine vertex (i, j) sits at leg cell coordinates (ring0 + i/r, seg0 + j/r)
+        const int ci = i / r, cj = j / r, fi = i % r, fj = j % r;
+        const float t = (float(ring0 * r + i) / float(r)) * dt;
+        const float th = (float(seg0 * r + j) / float(r)) * seg_angle;
+        const bool on_edge_row = i == 0 || i == patch_.rows - 1;
+        const bool on_edge_col = j == 0 || j == patch_.cols - 1;
+        glm::vec3 p = right_leg_.point(t, th);
+        // border vertices between two leg vertices lie on the leg's straight edge, not on the smooth
+        // surface, so the patch closes the hole without cracks (T-junctions on a chord)
+        if (on_edge_row && fj != 0) {
+            const float ring_t = float(ring0 + ci) * dt;
+            const glm::vec3 a = right_leg_.point(ring_t, float(seg0 + cj) * seg_angle);
+            const glm::vec3 b = right_leg_.point(ring_t, float(seg0 + cj + 1) * seg_angle);
+            p = a + (b - a) * (float(fj) / float(r));
+        } else if (on_edge_col && fi != 0) {
+            const float seg_th = float(seg0 + cj) * seg_angle;
+            const glm::vec3 a = right_leg_.point(float(ring0 + ci) * dt, seg_th);
+            const glm::vec3 b = right_leg_.point(float(ring0 + ci + 1) * dt, seg_th);
+            p = a + (b - a) * (float(fi) / float(r));
         }
+        return Vertex{p, right_leg_.outward_normal(t, th), kSkin};
+    };
+    for (int i = 0; i < patch_.rows; ++i)
+        for (int j = 0; j < patch_.cols; ++j) patch_.rest.vertices.push_back(surface(i, j));
     for (int i = 0; i + 1 < patch_.rows; ++i)
         for (int j = 0; j + 1 < patch_.cols; ++j) {
             const auto a = std::uint32_t(i * patch_.cols + j), b = a + 1, c = a + std::uint32_t(patch_.cols), d = c + 1;
             for (std::uint32_t k : {a, c, d, a, d, b}) patch_.rest.indices.push_back(k);
         }
+    orient_to_normals(patch_.rest);
 }
 
 Pose LegModel::probe_rest_pose(float u, float v) const

@@ -44,6 +44,17 @@ void recompute_normals(Mesh& mesh)
     }
 }
 
+void orient_to_normals(Mesh& mesh)
+{
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const auto& a = mesh.vertices[mesh.indices[t]];
+        const auto& b = mesh.vertices[mesh.indices[t + 1]];
+        const auto& c = mesh.vertices[mesh.indices[t + 2]];
+        const glm::vec3 face = glm::cross(b.position - a.position, c.position - a.position);
+        if (glm::dot(face, a.normal + b.normal + c.normal) < 0.0f) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    }
+}
+
 Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 color)
 {
     Mesh m;
@@ -61,6 +72,7 @@ Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 color)
             m.vertices.push_back({centre + su * u * half + sv * v * half, n, color});
         for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
     }
+    orient_to_normals(m);
     return m;
 }
 

@@ -33,6 +33,10 @@ Bounds bounds(const Mesh& mesh);
 // Area-weighted vertex normals from the triangles (for meshes whose shape changes at run time).
 void recompute_normals(Mesh& mesh);
 
+// Makes every triangle wind counter-clockwise seen from the side its vertex normals point to, so
+// the renderer can cull back faces (the builders produce outward normals; winding is fixed here).
+void orient_to_normals(Mesh& mesh);
+
 // An axis-aligned box with flat faces (the examination table).
 Mesh make_box(glm::vec3 min, glm::vec3 max, glm::vec3 color);
 

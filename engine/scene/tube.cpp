@@ -120,6 +120,7 @@ Mesh build_tube(const Tube& tube, const TubeMeshOptions& o)
     };
     cap(o.start, 0, 0.0f, +1.0f);
     cap(o.end, rings - 1, tube.t_max(), -1.0f);
+    orient_to_normals(m);
     return m;
 }
 
