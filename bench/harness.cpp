@@ -22,7 +22,8 @@ namespace echosim::bench {
 const std::vector<Suite>& suites()
 {
     static const std::vector<Suite> all = {
-        {"render", "headless frame of the default scene (offscreen, Vulkan)", register_render},
+        {"render", "headless frame of the default scene (offscreen, Vulkan)", register_render, true},
+        {"fit", "two-step tissue fit on assets/measurements/thigh.csv", register_fit, false},
     };
     return all;
 }
@@ -103,12 +104,13 @@ int run_bench(const BenchArgs& args)
     nlohmann::json report = nlohmann::json::array();
     int status = kExitOk;
     for (const Suite* suite : chosen) {
-        std::string gpu_name;
-        {
+        std::string gpu_name = "none";
+        if (suite->uses_gpu) {
             gpu::Context probe(options.gpu);
             gpu_name = probe.device_name();
         }
-        std::printf("%s: %s on %s\n", suite->name.c_str(), suite->what.c_str(), gpu_name.c_str());
+        std::printf("%s: %s%s%s\n", suite->name.c_str(), suite->what.c_str(), suite->uses_gpu ? " on " : "",
+                    suite->uses_gpu ? gpu_name.c_str() : "");
         benchmark::ClearRegisteredBenchmarks();
         std::shared_ptr<void> keep = suite->register_benchmarks(options);
         Collector collector;

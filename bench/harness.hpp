@@ -23,6 +23,7 @@ struct Suite {
     std::string what;  // one line for the table header
     // Registers the suite's benchmarks; what it returns (contexts, scenes) lives until they ran.
     std::function<std::shared_ptr<void>(const SuiteOptions&)> register_benchmarks;
+    bool uses_gpu = false;
 };
 
 const std::vector<Suite>& suites();

@@ -8,5 +8,6 @@
 namespace echosim::bench {
 
 std::shared_ptr<void> register_render(const SuiteOptions& options);
+std::shared_ptr<void> register_fit(const SuiteOptions& options);
 
 }  // namespace echosim::bench

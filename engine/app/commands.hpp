@@ -39,6 +39,21 @@ struct RunArgs {
 };
 int run_window(const RunArgs& args);
 
+struct MeasureArgs {
+    std::filesystem::path out;
+    std::uint64_t seed = 1;
+};
+int run_measure(const MeasureArgs& args);
+
+struct FitArgs {
+    std::filesystem::path data;
+    std::filesystem::path out;
+    std::filesystem::path report;  // empty: no report folder
+    std::string method = "lm";     // lm | steepest
+    bool json = false;
+};
+int run_fit(const FitArgs& args);
+
 struct BenchArgs {
     GpuArgs gpu;
     std::vector<std::string> names;  // empty: all

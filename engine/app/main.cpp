@@ -39,6 +39,20 @@ int main(int argc, char** argv)
     run_cmd->add_flag("--exercise", run.exercise, "resize, minimise and toggle fullscreen while running (smoke test)");
     add_gpu_options(run_cmd, run.gpu);
 
+    MeasureArgs measure;
+    auto* measure_cmd = app.add_subcommand("measure", "simulate the force-displacement campaign on the reference thigh (synthetic measurements CSV)");
+    measure_cmd->add_option("--out", measure.out, "CSV file to write")->required();
+    measure_cmd->add_option("--seed", measure.seed, "random seed of the sensor noise and leg motion");
+
+    FitArgs fit;
+    auto* fit_cmd = app.add_subcommand("fit", "fit the two-layer tissue model to force-displacement measurements");
+    fit_cmd->add_option("--data", fit.data, "measurements CSV (point,probe,x_mm,y_mm,z_mm,nx,ny,nz,depth_mm,force_N)")->required();
+    fit_cmd->add_option("--out", fit.out, "tissue model JSON to write")->required();
+    fit_cmd->add_option("--report", fit.report, "folder for the report: statistics and plots");
+    fit_cmd->add_option("--method", fit.method, "lm (Levenberg-Marquardt) or steepest (the paper's steepest descent)")
+        ->check(CLI::IsMember({"lm", "steepest"}));
+    fit_cmd->add_flag("--json", fit.json, "print a JSON summary on stdout");
+
     BenchArgs bench;
     auto* bench_cmd = app.add_subcommand("bench", "run the benchmarks and print a table");
     bench_cmd->add_option("names", bench.names, "benchmarks to run (default: all)");
@@ -53,6 +67,8 @@ int main(int argc, char** argv)
         if (render_cmd->parsed()) return run_render(render);
         if (run_cmd->parsed()) return run_window(run);
         if (bench_cmd->parsed()) return run_bench(bench);
+        if (measure_cmd->parsed()) return run_measure(measure);
+        if (fit_cmd->parsed()) return run_fit(fit);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;

@@ -160,13 +160,22 @@ LegModel::LegModel(const LegOptions& options)
     orient_to_normals(patch_.rest);
 }
 
+glm::vec3 LegModel::patch_point(float u, float v) const
+{
+    return right_leg_.point(patch_.t0 + (patch_.t1 - patch_.t0) * u, patch_.theta0 + (patch_.theta1 - patch_.theta0) * v);
+}
+
+glm::vec3 LegModel::patch_normal(float u, float v) const
+{
+    return right_leg_.outward_normal(patch_.t0 + (patch_.t1 - patch_.t0) * u,
+                                     patch_.theta0 + (patch_.theta1 - patch_.theta0) * v);
+}
+
 Pose LegModel::probe_rest_pose(float u, float v) const
 {
-    const float t = patch_.t0 + (patch_.t1 - patch_.t0) * u;
-    const float th = patch_.theta0 + (patch_.theta1 - patch_.theta0) * v;
-    const glm::vec3 p = right_leg_.point(t, th);
-    const glm::vec3 around = right_leg_.point(t, th + 1e-3f) - right_leg_.point(t, th - 1e-3f);
-    return pose_from_axes(p, around, -right_leg_.outward_normal(t, th));
+    const float dv = 1e-3f;
+    const glm::vec3 around = patch_point(u, v + dv) - patch_point(u, v - dv);
+    return pose_from_axes(patch_point(u, v), around, -patch_normal(u, v));
 }
 
 Mesh make_linear_probe()

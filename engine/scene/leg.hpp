@@ -38,8 +38,13 @@ public:
     // Everything that never moves: both legs less the patch, feet, the draped pelvis, the table.
     const Mesh& static_mesh() const { return static_mesh_; }
 
-    // A probe resting on the skin at (u, v) in [0,1]^2 of the patch (u along the limb, v around),
-    // in transverse orientation: the array across the thigh, the beam along the inward normal.
+    // The skin at (u, v) in [0,1]^2 of the patch (u along the limb from superior, v around from
+    // medial towards anterior): its point [mm] and outward unit normal.
+    glm::vec3 patch_point(float u, float v) const;
+    glm::vec3 patch_normal(float u, float v) const;
+
+    // A probe resting on the skin at (u, v) of the patch in transverse orientation: the array
+    // across the thigh, the beam along the inward normal.
     Pose probe_rest_pose(float u, float v) const;
 
 private:

@@ -1,0 +1,186 @@
+#include "tissue/tissue_json.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace echosim::tissue {
+namespace {
+
+using nlohmann::json;
+constexpr const char* kFormat = "echosim-tissue-model";
+constexpr int kVersion = 1;
+
+json vec3s(const std::vector<glm::dvec3>& v)
+{
+    json out = json::array();
+    for (const auto& p : v) out.push_back({p.x, p.y, p.z});
+    return out;
+}
+
+// Field access that names the file and the field on any failure.
+class Reader {
+public:
+    Reader(const std::filesystem::path& path, const json& root) : path_(path), root_(root) {}
+
+    [[noreturn]] void fail(const std::string& field, const std::string& why) const
+    {
+        throw ModelFileError(path_.string() + ": field '" + field + "': " + why);
+    }
+    const json& at(const json& obj, const std::string& field, const std::string& name) const
+    {
+        if (!obj.is_object() || !obj.contains(field)) fail(name, "missing");
+        return obj.at(field);
+    }
+    double number(const json& obj, const std::string& field, const std::string& name, double lo, double hi) const
+    {
+        const json& v = at(obj, field, name);
+        if (!v.is_number()) fail(name, "not a number");
+        const double d = v.get<double>();
+        if (!std::isfinite(d) || d < lo || d > hi)
+            fail(name, std::to_string(d) + " outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return d;
+    }
+    std::vector<double> numbers(const json& obj, const std::string& field, std::size_t n, double lo, double hi) const
+    {
+        const json& v = at(obj, field, field);
+        if (!v.is_array() || v.size() != n) fail(field, "expected an array of " + std::to_string(n) + " numbers");
+        std::vector<double> out(n);
+        for (std::size_t i = 0; i < n; ++i) out[i] = number(json{{"x", v[i]}}, "x", field + "[" + std::to_string(i) + "]", lo, hi);
+        return out;
+    }
+    std::vector<glm::dvec3> points(const json& obj, const std::string& field, std::size_t n) const
+    {
+        const json& v = at(obj, field, field);
+        if (!v.is_array() || v.size() != n) fail(field, "expected an array of " + std::to_string(n) + " [x, y, z]");
+        std::vector<glm::dvec3> out(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::string name = field + "[" + std::to_string(i) + "]";
+            if (!v[i].is_array() || v[i].size() != 3) fail(name, "expected [x, y, z]");
+            for (int c = 0; c < 3; ++c) out[i][c] = number(json{{"x", v[i][std::size_t(c)]}}, "x", name, -1e6, 1e6);
+        }
+        return out;
+    }
+    const json& root() const { return root_; }
+
+private:
+    const std::filesystem::path& path_;
+    const json& root_;
+};
+
+}  // namespace
+
+void write_tissue_model(const std::filesystem::path& path, const TissueModel& m)
+{
+    json j;
+    j["format"] = kFormat;
+    j["version"] = kVersion;
+    j["provenance"] = m.provenance;
+    j["grid"] = {{"rows", m.rows}, {"cols", m.cols}, {"refine", m.refine}};
+    j["lambda_N_per_mm"] = m.lambda;
+    j["mu_Ns_per_mm"] = m.mu;
+    j["samples"] = {{"a_per_N", m.samples.a}, {"b_mm_per_N", m.samples.b}};
+    j["fit"] = {{"method", m.fit.method},         {"seconds", m.fit.seconds},
+                {"samples", m.fit.samples},       {"mae_N", m.fit.mae_N},
+                {"sd_N", m.fit.sd_N},             {"rel_error", m.fit.rel_error},
+                {"mae_indenter_N", m.fit.mae_indenter_N}, {"mae_probe_N", m.fit.mae_probe_N}};
+    json nodes;
+    nodes["position_mm"] = vec3s(m.positions);
+    nodes["normal"] = vec3s(m.normals);
+    nodes["mass_kg"] = m.mass;
+    nodes["a_per_N"] = m.a;
+    nodes["b_mm_per_N"] = m.b;
+    nodes["boundary"] = m.boundary;
+    j["nodes"] = nodes;
+    json springs = json::array();
+    for (const auto& s : m.springs) springs.push_back({s.i, s.j, s.rest_length});
+    j["springs_i_j_rest_mm"] = springs;
+
+    std::filesystem::path tmp = path;
+    tmp += ".partial";
+    {
+        std::ofstream out(tmp);
+        if (!out) throw ModelFileError(path.string() + ": cannot open for writing");
+        out << j.dump(1) << "\n";
+        if (!out.flush()) {
+            std::filesystem::remove(tmp);
+            throw ModelFileError(path.string() + ": write failed");
+        }
+    }
+    std::filesystem::rename(tmp, path);
+}
+
+TissueModel read_tissue_model(const std::filesystem::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw ModelFileError(path.string() + ": cannot open");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::parse_error& e) {
+        throw ModelFileError(path.string() + ": not valid JSON: " + e.what());
+    }
+    Reader r(path, j);
+    if (!j.is_object() || j.value("format", "") != kFormat) r.fail("format", std::string("expected \"") + kFormat + "\"");
+    if (r.number(j, "version", "version", 1, 1e9) != kVersion) r.fail("version", "unsupported version");
+
+    TissueModel m;
+    const json& grid = r.at(j, "grid", "grid");
+    m.rows = int(r.number(grid, "rows", "grid.rows", 2, 100000));
+    m.cols = int(r.number(grid, "cols", "grid.cols", 2, 100000));
+    m.refine = int(r.number(grid, "refine", "grid.refine", 1, 64));
+    if (m.rows != (SampleGrid::rows - 1) * m.refine + 1 || m.cols != (SampleGrid::cols - 1) * m.refine + 1)
+        r.fail("grid", "rows and cols do not match refine " + std::to_string(m.refine));
+    m.lambda = r.number(j, "lambda_N_per_mm", "lambda_N_per_mm", 0, 1e6);
+    m.mu = r.number(j, "mu_Ns_per_mm", "mu_Ns_per_mm", 0, 1e6);
+    if (j.contains("provenance") && j["provenance"].is_string()) m.provenance = j["provenance"].get<std::string>();
+
+    const json& samples = r.at(j, "samples", "samples");
+    const auto sa = r.numbers(samples, "a_per_N", SampleGrid::count, 0, 1e6);
+    const auto sb = r.numbers(samples, "b_mm_per_N", SampleGrid::count, 1e-9, 1e6);
+    std::copy(sa.begin(), sa.end(), m.samples.a.begin());
+    std::copy(sb.begin(), sb.end(), m.samples.b.begin());
+    m.samples.lambda = m.lambda;
+    m.samples.mu = m.mu;
+
+    if (j.contains("fit") && j["fit"].is_object()) {
+        const json& f = j["fit"];
+        m.fit.method = f.value("method", "");
+        m.fit.seconds = f.value("seconds", 0.0);
+        m.fit.samples = f.value("samples", 0);
+        m.fit.mae_N = f.value("mae_N", 0.0);
+        m.fit.sd_N = f.value("sd_N", 0.0);
+        m.fit.rel_error = f.value("rel_error", 0.0);
+        m.fit.mae_indenter_N = f.value("mae_indenter_N", 0.0);
+        m.fit.mae_probe_N = f.value("mae_probe_N", 0.0);
+    }
+
+    const std::size_t n = std::size_t(m.rows) * std::size_t(m.cols);
+    const json& nodes = r.at(j, "nodes", "nodes");
+    m.positions = r.points(nodes, "position_mm", n);
+    m.normals = r.points(nodes, "normal", n);
+    for (std::size_t i = 0; i < n; ++i)
+        if (std::abs(std::sqrt(m.normals[i].x * m.normals[i].x + m.normals[i].y * m.normals[i].y + m.normals[i].z * m.normals[i].z) - 1.0) > 1e-3)
+            r.fail("normal[" + std::to_string(i) + "]", "not of unit length");
+    m.mass = r.numbers(nodes, "mass_kg", n, 1e-12, 1e3);
+    m.a = r.numbers(nodes, "a_per_N", n, 0, 1e9);
+    m.b = r.numbers(nodes, "b_mm_per_N", n, 1e-12, 1e9);
+    const auto boundary = r.numbers(nodes, "boundary", n, 0, 1);
+    m.boundary.assign(boundary.begin(), boundary.end());
+
+    const json& springs = r.at(j, "springs_i_j_rest_mm", "springs_i_j_rest_mm");
+    if (!springs.is_array() || springs.empty()) r.fail("springs_i_j_rest_mm", "expected a non-empty array of [i, j, rest_mm]");
+    for (std::size_t s = 0; s < springs.size(); ++s) {
+        const std::string name = "springs_i_j_rest_mm[" + std::to_string(s) + "]";
+        if (!springs[s].is_array() || springs[s].size() != 3) r.fail(name, "expected [i, j, rest_mm]");
+        const double i = r.number(json{{"x", springs[s][0]}}, "x", name + ".i", 0, double(n - 1));
+        const double k = r.number(json{{"x", springs[s][1]}}, "x", name + ".j", 0, double(n - 1));
+        const double rest = r.number(json{{"x", springs[s][2]}}, "x", name + ".rest_mm", 1e-6, 1e6);
+        if (i == k || i != std::floor(i) || k != std::floor(k)) r.fail(name, "i and j must be two different node indices");
+        m.springs.push_back({std::uint32_t(i), std::uint32_t(k), rest});
+    }
+    return m;
+}
+
+}  // namespace echosim::tissue

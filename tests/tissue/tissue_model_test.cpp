@@ -1,0 +1,146 @@
+#include "tissue/tissue_model.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "scene/leg.hpp"
+#include "tissue/nonlinear_spring.hpp"
+#include "tissue/tissue_json.hpp"
+
+namespace echosim::tissue {
+namespace {
+
+SampleParameters varied_parameters()
+{
+    SampleParameters p;
+    for (int i = 0; i < SampleGrid::count; ++i) {
+        p.b[std::size_t(i)] = 0.5 + 0.01 * i;           // rest stiffness 2 .. 0.9 N/mm
+        p.a[std::size_t(i)] = p.b[std::size_t(i)] / (20.0 + 0.2 * i);  // bottoms out at 20 .. 32.6 mm
+    }
+    p.lambda = 0.08;
+    p.mu = 0.002;
+    return p;
+}
+
+TEST(TissueModel, SamplePointsKeepTheirParametersAtEveryRefinement)
+{
+    const scene::LegModel leg;
+    const SampleParameters params = varied_parameters();
+    for (int refine : {1, 2, 3}) {
+        const TissueModel m = build_tissue_model(leg, params, refine);
+        EXPECT_EQ(m.rows, 7 * refine + 1);
+        EXPECT_EQ(m.node_count(), std::size_t(m.rows * m.cols));
+        for (int p : {0, 9, 36, 63}) {
+            const auto k = m.sample_node(p);
+            // scaled by the node's 1/r^2 share of area; the bottoming depth b/a is kept
+            EXPECT_NEAR(m.b[k], params.b[std::size_t(p)] * refine * refine, 1e-9);
+            EXPECT_NEAR(m.b[k] / m.a[k], params.b[std::size_t(p)] / params.a[std::size_t(p)], 1e-9);
+        }
+    }
+}
+
+TEST(TissueModel, RefinedNodesInterpolateStiffnessAndDepth)
+{
+    // a node halfway between sample points 9 and 10 (row 1, columns 1 and 2) at refine 2: its rest
+    // stiffness per area (1/b) and its bottoming depth (b/a) are the two points' means
+    const scene::LegModel leg;
+    const SampleParameters params = varied_parameters();
+    const TissueModel m = build_tissue_model(leg, params, 2);
+    const auto k = m.node(2, 3);
+    const double k9 = 1.0 / params.b[9], k10 = 1.0 / params.b[10];
+    EXPECT_NEAR(4.0 / m.b[k], 0.5 * (k9 + k10), 1e-12);
+    const double d9 = params.b[9] / params.a[9], d10 = params.b[10] / params.a[10];
+    EXPECT_NEAR(m.b[k] / m.a[k], 0.5 * (d9 + d10), 1e-9);
+    // a node in the middle of four sample points takes a quarter of each
+    const auto c = m.node(3, 3);
+    const double mean_k = 0.25 * (1 / params.b[9] + 1 / params.b[10] + 1 / params.b[17] + 1 / params.b[18]);
+    EXPECT_NEAR(4.0 / m.b[c], mean_k, 1e-12);
+}
+
+TEST(TissueModel, GeometryFollowsTheLeg)
+{
+    const scene::LegModel leg;
+    const TissueModel m = build_tissue_model(leg, varied_parameters(), 2);
+    // the sample point 27 (row 3, col 3) lies where the leg's patch has it
+    const glm::dvec3 expected(leg.patch_point(float(SampleGrid::u(3)), float(SampleGrid::v(3))));
+    EXPECT_LT(glm::length(m.positions[m.sample_node(27)] - expected), 1e-4);
+    // rest lengths are the node distances; every node has some mass; the rim is marked
+    for (const Spring& s : m.springs) EXPECT_NEAR(s.rest_length, glm::length(m.positions[s.i] - m.positions[s.j]), 1e-9);
+    for (double mass : m.mass) EXPECT_GT(mass, 0.0);
+    EXPECT_TRUE(m.boundary[0]);
+    EXPECT_FALSE(m.boundary[m.node(3, 3)]);
+    // total mass: patch area times the surface density
+    double total = 0;
+    for (double mass : m.mass) total += mass;
+    EXPECT_GT(total / kSurfaceMassPerArea, 3000.0);   // the sampled area is roughly 105 x 70 mm
+    EXPECT_LT(total / kSurfaceMassPerArea, 12000.0);
+}
+
+std::filesystem::path temp(const char* name)
+{
+    return std::filesystem::temp_directory_path() / (std::string("echosim_tissue_") + std::to_string(::getpid()) + name);
+}
+
+TEST(TissueJson, RoundTrips)
+{
+    const scene::LegModel leg;
+    TissueModel m = build_tissue_model(leg, varied_parameters(), 2);
+    m.provenance = "test";
+    m.fit.mae_N = 0.5;
+    m.fit.method = "levenberg-marquardt";
+    const auto path = temp("roundtrip.json");
+    write_tissue_model(path, m);
+    const TissueModel r = read_tissue_model(path);
+    EXPECT_EQ(r.rows, m.rows);
+    EXPECT_EQ(r.refine, 2);
+    EXPECT_EQ(r.springs.size(), m.springs.size());
+    EXPECT_DOUBLE_EQ(r.lambda, m.lambda);
+    EXPECT_DOUBLE_EQ(r.a[17], m.a[17]);
+    EXPECT_DOUBLE_EQ(r.samples.b[5], m.samples.b[5]);
+    EXPECT_DOUBLE_EQ(r.fit.mae_N, 0.5);
+    EXPECT_EQ(r.provenance, "test");
+    EXPECT_LT(glm::length(r.positions[40] - m.positions[40]), 1e-9);
+    std::filesystem::remove(path);
+}
+
+TEST(TissueJson, BadFilesNameTheField)
+{
+    const scene::LegModel leg;
+    const auto good = temp("good.json");
+    write_tissue_model(good, build_tissue_model(leg, varied_parameters(), 1));
+    std::string text;
+    {
+        std::ifstream in(good);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    auto message = [&](const std::string& broken) {
+        const auto path = temp("bad.json");
+        std::ofstream(path) << broken;
+        try {
+            read_tissue_model(path);
+        } catch (const ModelFileError& e) {
+            std::filesystem::remove(path);
+            return std::string(e.what());
+        }
+        std::filesystem::remove(path);
+        return std::string("no error");
+    };
+    auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string t = text;
+        const auto at = t.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        return t.replace(at, from.size(), to);
+    };
+    EXPECT_NE(message(replaced("\"lambda_N_per_mm\"", "\"lambda_typo\"")).find("'lambda_N_per_mm': missing"), std::string::npos);
+    EXPECT_NE(message(replaced("\"refine\": 1", "\"refine\": 2")).find("'grid'"), std::string::npos);
+    EXPECT_NE(message(text.substr(0, text.size() / 2)).find("not valid JSON"), std::string::npos);
+    EXPECT_NE(message(replaced("\"format\": \"echosim-tissue-model\"", "\"format\": \"other\"")).find("'format'"), std::string::npos);
+    std::filesystem::remove(good);
+}
+
+}  // namespace
+}  // namespace echosim::tissue
