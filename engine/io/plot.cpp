@@ -582,15 +582,19 @@ Histogram make_histogram_by_width(std::span<const double> data, double bin_width
 
 Rgba palette_colour(std::size_t index)
 {
-    // distinct on white and for the common colour-vision deficiencies, in order of contrast
-    static constexpr std::array<Rgba, 8> colours = {{{0, 90, 181, 255},
-                                                     {220, 110, 0, 255},
-                                                     {0, 140, 80, 255},
-                                                     {200, 30, 60, 255},
-                                                     {110, 70, 170, 255},
-                                                     {0, 150, 170, 255},
-                                                     {140, 90, 40, 255},
-                                                     {90, 90, 90, 255}}};
+    // distinct on white, strongest contrast first; twelve so the fit report's 11 points do not repeat
+    static constexpr std::array<Rgba, 12> colours = {{{0, 90, 181, 255},
+                                                      {220, 110, 0, 255},
+                                                      {0, 140, 80, 255},
+                                                      {200, 30, 60, 255},
+                                                      {110, 70, 170, 255},
+                                                      {0, 150, 170, 255},
+                                                      {140, 90, 40, 255},
+                                                      {90, 90, 90, 255},
+                                                      {210, 60, 170, 255},
+                                                      {125, 130, 0, 255},
+                                                      {90, 160, 240, 255},
+                                                      {20, 20, 20, 255}}};
     return colours[index % colours.size()];
 }
 
