@@ -1,0 +1,29 @@
+// Stage 1 of a step: the forces on every node and the linearisation the implicit solver needs.
+//   surface springs    f = lambda (L - L0) - mu dL/dt, along the spring (paper eq. 2)
+//   non-linear springs F(c) = c / (b - a c) along the rest normal, c the compression (eq. 1),
+//                      and a linear shear spring across it (see PhysicsOptions)
+//   gravity            m g
+//   external           whatever the caller put in state.external (tests, haptic reaction)
+// The stiffness blocks are kept positive semi-definite, as conjugate gradient needs: the
+// transverse term of a compressed surface spring (which would buckle it) is dropped (Choi and Ko
+// 2002).
+#pragma once
+
+#include "physics/physics_options.hpp"
+#include "physics/tissue_state.hpp"
+#include "tissue/tissue_model.hpp"
+
+namespace echosim::physics {
+
+// The non-linear spring's compression is clamped to this fraction of its bottoming depth and
+// continued linearly beyond, so a violent push cannot make the force infinite.
+inline constexpr double kMaxCompressionFraction = 0.95;
+
+void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& options, TissueState& state,
+                       bool update_linearisation);
+
+// Potential energy of the springs [N mm = mJ] (for tests of energy decay).
+double potential_energy(const tissue::TissueModel& model, const TissueState& state);
+double kinetic_energy(const tissue::TissueModel& model, const TissueState& state);
+
+}  // namespace echosim::physics

@@ -1,0 +1,40 @@
+// The immutable parameters of the dynamics (paper §4), apart from the tissue model's own and from
+// the mutable state. Units: mm, s, N, kg.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace echosim::physics {
+
+enum class Integrator {
+    implicit_euler,  // linearly implicit backward Euler, Baraff & Witkin 1998, solved by PCG
+    explicit_euler,  // symplectic Euler, kept to show why the implicit one is needed
+};
+
+enum class JacobianMode {
+    updated,   // the force Jacobian re-evaluated at every step
+    constant,  // evaluated once at rest and reused (the paper's cheaper option)
+};
+
+struct PhysicsOptions {
+    double time_step = 1e-3;  // [s]: 1 kHz
+    Integrator integrator = Integrator::implicit_euler;
+    JacobianMode jacobian = JacobianMode::updated;
+    // the patient lies supine, so gravity points posterior: +y in LPS [mm/s^2]
+    Eigen::Vector3d gravity{0.0, 9810.0, 0.0};
+    // damping of the non-linear springs along the normal, as a fraction of critical damping of a
+    // node's mass on its rest stiffness (the paper damps only the surface springs; without some
+    // normal damping a node would ring on its spring for ever)
+    double normal_damping_ratio = 0.7;
+    // shear support of the tissue column under each node, as a fraction of the non-linear spring's
+    // rest stiffness 1/b. The paper's springs act only along the normal and leave lateral stability
+    // to the surface springs; with the fitted lambda as small as the data make it (about 6e-4 N/mm),
+    // a node pushed in would slide sideways off its spring. Quasi-static pushes along the normal, all
+    // the fit ever sees, do not feel it.
+    double lateral_stiffness_ratio = 0.5;
+    double cg_tolerance = 1e-6;  // relative residual at which conjugate gradient stops
+    int cg_max_iterations = 200;
+    double max_speed = 5e4;  // [mm/s]: beyond this a node has exploded; the state is reset
+};
+
+}  // namespace echosim::physics

@@ -1,0 +1,45 @@
+#include "physics/tissue_state.hpp"
+
+#include <cmath>
+
+
+namespace echosim::physics {
+
+TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options)
+{
+    TissueState s;
+    const std::size_t n = model.node_count();
+    const Eigen::Index dof = Eigen::Index(3 * n);
+    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.rest, &s.external, &s.force, &s.rhs, &s.dv, &s.residual, &s.direction, &s.product,
+                               &s.preconditioner, &s.z})
+        *v = Eigen::VectorXd::Zero(dof);
+    s.inv_mass_scaled.resize(n);
+    s.fixed.assign(model.boundary.begin(), model.boundary.end());
+    s.springs.resize(model.springs.size());
+    s.normals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        s.rest.segment<3>(3 * Eigen::Index(i)) = Eigen::Vector3d(model.positions[i].x, model.positions[i].y, model.positions[i].z);
+        const double m = model.mass[i] * 1e-3;  // masses in N s^2 / mm: see step.hpp on units
+        s.inv_mass_scaled[i] = 1.0 / m;
+        NormalLinearisation& lin = s.normals[i];
+        lin.n = Eigen::Vector3d(model.normals[i].x, model.normals[i].y, model.normals[i].z).normalized();
+        lin.stiffness = 1.0 / model.b[i];
+        lin.damping = 2.0 * options.normal_damping_ratio * std::sqrt(m / model.b[i]);
+        lin.lateral_stiffness = options.lateral_stiffness_ratio / model.b[i];
+        lin.lateral_damping = 2.0 * options.normal_damping_ratio * std::sqrt(m * lin.lateral_stiffness);
+    }
+    s.contacts = contact::make_contact_set(n, std::size_t(2 * (model.rows - 1) * (model.cols - 1)), contact::ProbeGeometry{});
+    reset_to_rest(model, s);
+    return s;
+}
+
+void reset_to_rest(const tissue::TissueModel& model, TissueState& s)
+{
+    (void)model;
+    s.x = s.rest;
+    s.v.setZero();
+    s.dv.setZero();
+    s.constant_jacobian_ready = false;
+}
+
+}  // namespace echosim::physics

@@ -1,0 +1,70 @@
+// The mutable state of the tissue dynamics, apart from the immutable TissueModel and
+// PhysicsOptions (MuJoCo's mjData beside mjModel). Every buffer a step needs is allocated here,
+// when the state is made, so a step allocates nothing.
+//
+// Layout: positions, velocities and forces as Eigen vectors of 3n doubles (node i at 3i..3i+2).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contact/probe_contact.hpp"
+#include "physics/physics_options.hpp"
+#include "tissue/tissue_model.hpp"
+
+namespace echosim::physics {
+
+// Per-spring linearisation, cached by the force stage for the stiffness product:
+// K_s p = lambda (beta p + (1 - beta) (e . p) e),  D_s p = mu (e . p) e.
+struct SpringLinearisation {
+    Eigen::Vector3d e = Eigen::Vector3d::Zero();  // unit direction i -> j
+    double beta = 0;                              // max(0, 1 - rest / length)
+};
+
+// Per-node support by the tissue column: the non-linear spring along the rest normal n (the paper's
+// eq. 1) and a linear shear spring across it. Blocks: stiffness (k n n^T + k_t (I - n n^T)),
+// damping (d n n^T + d_t (I - n n^T)).
+struct NormalLinearisation {
+    Eigen::Vector3d n = Eigen::Vector3d::UnitY();  // outward rest normal
+    double stiffness = 0;          // k = dF/dc [N/mm], updated with the compression
+    double damping = 0;            // d [N s/mm]
+    double lateral_stiffness = 0;  // k_t [N/mm]
+    double lateral_damping = 0;    // d_t [N s/mm]
+};
+
+struct StepStats {
+    int cg_iterations = 0;
+    double cg_residual = 0;
+    double probe_force_N = 0;  // the tissue's push on the probe, along the probe axis
+    int contacts = 0;
+};
+
+struct TissueState {
+    double time = 0;                 // [s]
+    Eigen::VectorXd x, v;            // positions [mm], velocities [mm/s]
+    Eigen::VectorXd external;        // forces applied from outside (tests, haptics) [N]
+    Eigen::VectorXd rest;                  // rest positions [mm]
+    std::vector<double> inv_mass_scaled;   // 1 / (m / 1000): see physics/integrate.cpp on units
+    std::vector<std::uint8_t> fixed;       // rim nodes held to the leg
+    contact::ProbeState probe;             // where the probe is, set by the caller before a step
+    contact::ContactSet contacts;          // filled by the contact stage
+
+    // scratch of the solver stages (sized once)
+    Eigen::VectorXd force, rhs, dv, residual, direction, product, preconditioner, z;
+    std::vector<SpringLinearisation> springs;
+    std::vector<NormalLinearisation> normals;
+    bool constant_jacobian_ready = false;
+
+    StepStats last;
+    int resets = 0;   // NaNs and explosions detected and recovered from
+    std::int64_t steps = 0;
+};
+
+TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options);
+
+// Back to rest: positions, velocities and time; counters kept.
+void reset_to_rest(const tissue::TissueModel& model, TissueState& state);
+
+}  // namespace echosim::physics
