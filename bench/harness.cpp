@@ -24,6 +24,7 @@ const std::vector<Suite>& suites()
     static const std::vector<Suite> all = {
         {"render", "headless frame of the default scene (offscreen, Vulkan)", register_render, true},
         {"fit", "two-step tissue fit on assets/measurements/thigh.csv", register_fit, false},
+        {"physics", "tissue dynamics steps with the probe pressing and sliding (one core)", register_physics, false},
     };
     return all;
 }

@@ -6,135 +6,118 @@
 namespace echosim::contact {
 namespace {
 
-constexpr double kCell = 2.0;  // broad-phase cell size on the face [mm]
-
-int face_samples(const ProbeGeometry& g, int& nx, int& nz)
+// Calls visit(wb, wc) for the k^2 sample points of a triangle subdivided k times: the centroids of
+// its sub-triangles, in barycentric coordinates of vertices b and c.
+template <class Visit>
+void for_each_sample(int k, Visit&& visit)
 {
-    nx = std::max(1, int(std::lround(g.face_width / g.sample_spacing)));
-    nz = std::max(1, int(std::lround(g.face_thickness / g.sample_spacing)));
-    return nx * nz;
+    const double inv = 1.0 / k;
+    for (int i = 0; i < k; ++i)
+        for (int j = 0; i + j < k; ++j) {
+            visit((i + 1.0 / 3.0) * inv, (j + 1.0 / 3.0) * inv);                        // upward
+            if (i + j + 2 <= k) visit((i + 2.0 / 3.0) * inv, (j + 2.0 / 3.0) * inv);  // downward
+        }
 }
+
+Eigen::Vector3d node(const Eigen::VectorXd& x, std::uint32_t i) { return x.segment<3>(3 * Eigen::Index(i)); }
 
 }  // namespace
 
-ContactSet make_contact_set(std::size_t node_count, std::size_t triangle_count, const ProbeGeometry& g)
+PatchSurface make_patch_surface(int rows, int cols, const Eigen::VectorXd& rest, double spacing)
 {
-    ContactSet s;
-    int nx = 0, nz = 0;
-    s.contacts.reserve(std::size_t(face_samples(g, nx, nz)));
-    s.local.resize(node_count);
-    s.cells_x = int(std::ceil(g.face_width / kCell));
-    s.cells_z = int(std::ceil(g.face_thickness / kCell));
-    s.cell_start.resize(std::size_t(s.cells_x * s.cells_z) + 1);
-    // a triangle is filed in every cell its footprint overlaps; bound the total generously
-    s.cell_items.resize(std::max<std::size_t>(1024, triangle_count * 4));
-    s.candidates.reserve(triangle_count);
+    PatchSurface s;
+    s.rows = rows;
+    s.cols = cols;
+    for (int r = 0; r + 1 < rows; ++r)
+        for (int c = 0; c + 1 < cols; ++c) {
+            const auto a = std::uint32_t(r * cols + c), b = a + 1, d = a + std::uint32_t(cols), e = d + 1;
+            s.triangles.push_back({a, d, e});
+            s.triangles.push_back({a, e, b});
+        }
+    for (const auto& t : s.triangles) {
+        const Eigen::Vector3d p0 = node(rest, t[0]), p1 = node(rest, t[1]), p2 = node(rest, t[2]);
+        const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+        const int k = std::clamp(int(std::ceil(longest / spacing)), 1, 255);
+        s.subdivision.push_back(std::uint8_t(k));
+        s.sample_area.push_back(0.5 * (p1 - p0).cross(p2 - p0).norm() / double(k * k));
+    }
     return s;
 }
 
-int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& probe,
-            const std::vector<std::array<std::uint32_t, 3>>& triangles, const Eigen::VectorXd& x, ContactSet& set,
-            Eigen::VectorXd& force)
+ContactSet make_contact_set(const PatchSurface& surface)
+{
+    ContactSet set;
+    set.bvh = GridBvh(surface.rows, surface.cols);
+    std::size_t samples = 0;
+    for (std::uint8_t k : surface.subdivision) samples += std::size_t(k) * k;
+    set.contacts.reserve(samples);
+    set.cells.reserve(surface.triangles.size() / 2 + 1);
+    return set;
+}
+
+int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& probe, const PatchSurface& surface,
+            const Eigen::VectorXd& x, const Eigen::VectorXd& v, ContactSet& set, Eigen::VectorXd& force)
 {
     set.contacts.clear();
     set.total_force = 0;
     if (!probe.active) return 0;
-    const Eigen::Matrix3d to_local = probe.orientation.conjugate().toRotationMatrix();
-    set.axis = probe.orientation * Eigen::Vector3d::UnitY();
-
-    // nodes into the probe frame: x across the face, y along the beam, z across its thickness
-    const std::size_t n = std::size_t(x.size() / 3);
-    for (std::size_t i = 0; i < n; ++i) set.local[i] = to_local * (x.segment<3>(3 * Eigen::Index(i)) - probe.position);
-
-    // broad phase: triangles that reach the box, filed by the face cells their footprint covers
+    const Eigen::Matrix3d to_world = probe.orientation.toRotationMatrix();
+    const Eigen::Matrix3d to_local = to_world.transpose();
+    set.axis = to_world.col(1);
     const double hw = g.face_width / 2, ht = g.face_thickness / 2;
-    set.candidates.clear();
-    std::fill(set.cell_start.begin(), set.cell_start.end(), 0u);
-    auto cell_range = [&](const std::array<std::uint32_t, 3>& t, int& x0, int& x1, int& z0, int& z1) {
-        double lx = 1e300, hx = -1e300, lz = 1e300, hz = -1e300, ly = 1e300;
-        for (std::uint32_t k : t) {
-            const auto& p = set.local[k];
-            lx = std::min(lx, p.x()), hx = std::max(hx, p.x());
-            lz = std::min(lz, p.z()), hz = std::max(hz, p.z());
-            ly = std::min(ly, p.y());
-        }
-        // outside the face's footprint, or entirely in front of the face (y > 0): no contact
-        if (hx < -hw || lx > hw || hz < -ht || lz > ht || ly > 0.0 || ly < -g.body_depth) return false;
-        x0 = std::clamp(int((lx + hw) / kCell), 0, set.cells_x - 1);
-        x1 = std::clamp(int((hx + hw) / kCell), 0, set.cells_x - 1);
-        z0 = std::clamp(int((lz + ht) / kCell), 0, set.cells_z - 1);
-        z1 = std::clamp(int((hz + ht) / kCell), 0, set.cells_z - 1);
-        return true;
-    };
-    for (std::uint32_t t = 0; t < triangles.size(); ++t) {
-        int x0 = 0, x1 = 0, z0 = 0, z1 = 0;
-        if (!cell_range(triangles[t], x0, x1, z0, z1)) continue;
-        set.candidates.push_back(t);
-        for (int cz = z0; cz <= z1; ++cz)
-            for (int cx = x0; cx <= x1; ++cx) ++set.cell_start[std::size_t(cz * set.cells_x + cx) + 1];
-    }
-    for (std::size_t c = 1; c < set.cell_start.size(); ++c) set.cell_start[c] += set.cell_start[c - 1];
-    if (set.cell_start.back() > set.cell_items.size()) set.cell_items.resize(set.cell_start.back());  // rare: a crumpled mesh
-    {
-        // fill, using the cell starts as moving cursors, then shift them back
-        for (std::uint32_t t : set.candidates) {
-            int x0 = 0, x1 = 0, z0 = 0, z1 = 0;
-            cell_range(triangles[t], x0, x1, z0, z1);
-            for (int cz = z0; cz <= z1; ++cz)
-                for (int cx = x0; cx <= x1; ++cx) set.cell_items[set.cell_start[std::size_t(cz * set.cells_x + cx)]++] = t;
-        }
-        for (std::size_t c = set.cell_start.size() - 1; c > 0; --c) set.cell_start[c] = set.cell_start[c - 1];
-        set.cell_start[0] = 0;
-    }
 
-    // narrow phase: each face sample against the triangles of its cell
-    int nx = 0, nz = 0;
-    face_samples(g, nx, nz);
-    const double area = (g.face_width / nx) * (g.face_thickness / nz);
-    for (int iz = 0; iz < nz; ++iz)
-        for (int ix = 0; ix < nx; ++ix) {
-            const double sx = -hw + g.face_width * (ix + 0.5) / nx, sz = -ht + g.face_thickness * (iz + 0.5) / nz;
-            const int cx = std::clamp(int((sx + hw) / kCell), 0, set.cells_x - 1);
-            const int cz = std::clamp(int((sz + ht) / kCell), 0, set.cells_z - 1);
-            const std::size_t cell = std::size_t(cz * set.cells_x + cx);
-            // the deepest skin point under this sample (the face meets the outermost layer first)
-            Contact best;
-            for (std::uint32_t k = set.cell_start[cell]; k < set.cell_start[cell + 1]; ++k) {
-                const auto& t = triangles[set.cell_items[k]];
-                const Eigen::Vector3d &a = set.local[t[0]], &b = set.local[t[1]], &c = set.local[t[2]];
-                // barycentric coordinates of (sx, sz) in the triangle's footprint
-                const double d = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
-                if (std::abs(d) < 1e-12) continue;
-                const double wb = ((sx - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (sz - a.z())) / d;
-                const double wc = ((b.x() - a.x()) * (sz - a.z()) - (sx - a.x()) * (b.z() - a.z())) / d;
+    // broad phase: the cells whose boxes meet the probe box's world-space bounds
+    Aabb box;
+    for (double bx : {-hw, hw})
+        for (double by : {-g.body_depth, 0.0})
+            for (double bz : {-ht, ht}) box.grow(probe.position + to_world * Eigen::Vector3d(bx, by, bz));
+    set.bvh.refit(x);
+    set.cells.clear();
+    set.bvh.query(box, x, set.cells);
+
+    // narrow phase: the material samples of those cells' triangles that lie inside the box
+    const double rate_probe = set.axis.dot(probe.velocity);
+    for (std::uint32_t cell : set.cells)
+        for (std::uint32_t t = 2 * cell; t < 2 * cell + 2; ++t) {
+            const auto& tri = surface.triangles[t];
+            const Eigen::Vector3d a = to_local * (node(x, tri[0]) - probe.position);
+            const Eigen::Vector3d b = to_local * (node(x, tri[1]) - probe.position);
+            const Eigen::Vector3d c = to_local * (node(x, tri[2]) - probe.position);
+            if (std::min({a.y(), b.y(), c.y()}) >= 0.0) continue;  // wholly beyond the face
+            const double area = surface.sample_area[t];
+            for_each_sample(surface.subdivision[t], [&](double wb, double wc) {
                 const double wa = 1.0 - wb - wc;
-                constexpr double eps = -1e-9;
-                if (wa < eps || wb < eps || wc < eps) continue;
-                const double y = wa * a.y() + wb * b.y() + wc * c.y();
-                const double penetration = -y;  // the skin is behind the face plane by this much
-                if (penetration <= 0 || penetration > g.body_depth || penetration <= best.penetration) continue;
-                best.nodes = t;
-                best.weights = {wa, wb, wc};
-                best.penetration = penetration;
-            }
-            if (best.penetration <= 0) continue;
-            best.force = law.pressure(best.penetration) * area;
-            best.stiffness = law.slope(best.penetration) * area;
-            for (int k = 0; k < 3; ++k) force.segment<3>(3 * Eigen::Index(best.nodes[std::size_t(k)])) += best.weights[k] * best.force * set.axis;
-            set.total_force += best.force;
-            set.contacts.push_back(best);
+                const Eigen::Vector3d p = wa * a + wb * b + wc * c;
+                if (p.y() >= 0.0 || p.y() < -g.body_depth || std::abs(p.x()) > hw || std::abs(p.z()) > ht) return;
+                Contact ct;
+                ct.nodes = tri;
+                ct.weights = {wa, wb, wc};
+                ct.penetration = -p.y();
+                // fade over the rounded rim: continuous as skin slides across the face's edge
+                const double rim = std::min(hw - std::abs(p.x()), ht - std::abs(p.z()));
+                const double fade = g.edge_radius > 0 ? std::min(1.0, rim / g.edge_radius) : 1.0;
+                ct.stiffness = law.slope(ct.penetration) * area * fade;
+                double skin_speed = 0;
+                for (int k = 0; k < 3; ++k) skin_speed += ct.weights[k] * set.axis.dot(v.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])));
+                ct.force = std::max(0.0, law.pressure(ct.penetration) * area * fade + law.damping_time * ct.stiffness * (rate_probe - skin_speed));
+                for (int k = 0; k < 3; ++k) force.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])) += (ct.weights[k] * ct.force) * set.axis;
+                set.total_force += ct.force;
+                set.contacts.push_back(ct);
+            });
         }
     return int(set.contacts.size());
 }
 
-void add_contact_product(const ContactSet& set, double h2, const Eigen::VectorXd& p, Eigen::VectorXd& out)
+void add_contact_product(const ContactSet& set, const PenaltyLaw& law, double h, double h2, const Eigen::VectorXd& p,
+                         Eigen::VectorXd& out)
 {
     // the penalty pushes along the axis with stiffness k on the sample's penetration, which moves
-    // with the weighted sum of the three nodes along the axis: K = k (w a)(w a)^T
+    // with the weighted sum of the three nodes along the axis: K = k (w a)(w a)^T, D = tau K
+    const double scale = h2 + h * law.damping_time;
     for (const Contact& c : set.contacts) {
         double along = 0;
         for (int k = 0; k < 3; ++k) along += c.weights[k] * set.axis.dot(p.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])));
-        const double s = h2 * c.stiffness * along;
+        const double s = scale * c.stiffness * along;
         for (int k = 0; k < 3; ++k) out.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])) += (s * c.weights[k]) * set.axis;
     }
 }

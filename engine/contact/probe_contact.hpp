@@ -1,12 +1,15 @@
 // Probe-versus-skin contact (paper §5.1). The probe is an oriented box whose front face (40 x 10 mm,
-// the transducer) touches the skin. The face is sampled by a grid of contact points; each casts
-// along the probe axis onto the deformable patch's triangles (found through a uniform grid over the
-// face, rebuilt every step, so a concave, deforming skin is fine). Where the skin lies in front of
-// the face, i.e. inside the box, the penetration is measured from the face, a non-linear penalty
-// pressure (after Deguet, Joukhadar and Laugier 1998) acts on the sample's share of the face, and
-// the force goes to the triangle's three nodes by barycentric weights. Frictionless: the force is
-// along the probe axis only, so the probe slides freely over the gel.
+// the transducer) touches the skin; the skin is the deformable patch, a grid of triangles that may
+// become concave. Each triangle carries material sample points (barycentric, fixed on the skin, a
+// millimetre or less apart at rest); a sample that has entered the box is in contact, its
+// penetration measured from the front face along the probe axis. A non-linear penalty pressure
+// (after Deguet, Joukhadar and Laugier 1998) acts on the sample's share of the skin's rest area, and
+// its force goes to the triangle's three nodes by the sample's barycentric weights. Frictionless:
+// the force is along the probe axis only, so the probe slides freely over the gel. Because the
+// samples are material points, the contact forces derive from an energy and the skin settles under
+// a still probe (sampling the face instead would not).
 //
+// Broad phase: a BVH over the grid's cells (patch_bvh.hpp), refitted every step.
 // Memory: every buffer is sized when the ContactSet is made; a step does not allocate.
 #pragma once
 
@@ -17,28 +20,51 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "contact/patch_bvh.hpp"
+
 namespace echosim::contact {
 
 struct ProbeGeometry {
     double face_width = 40.0;      // along the array (probe x) [mm]
     double face_thickness = 10.0;  // elevational (probe z) [mm]
     double body_depth = 60.0;      // how far the box extends behind the face (probe -y) [mm]
-    double sample_spacing = 1.0;   // between contact points on the face [mm]
+    // a real transducer's face is rounded at its rim: the pressure fades to zero over this distance
+    // from the edge, so skin sliding past the edge feels no jump [mm]
+    double edge_radius = 1.0;
 };
 
-// Penalty pressure [N/mm^2] at penetration p [mm]: k (p + p^2 / p0). Stiff against tissue (whose
-// stress at 10 mm is about 0.01 N/mm^2), so the face sinks into the skin by well under a millimetre.
+// Penalty pressure [N/mm^2] at penetration p [mm], non-linear as Deguet et al.'s: quadratic up to
+// p0 (k p^2 / (2 p0)), linear with slope k beyond. Its stiffness grows from zero as a contact
+// starts, so a sample that comes into contact during a step does not meet a stiffness the implicit
+// solver could not know about. Stiff against tissue (whose stress at 10 mm is about 0.01 N/mm^2):
+// the face sinks into the skin by a few tenths of a millimetre.
 struct PenaltyLaw {
     double stiffness = 0.5;  // k [N/mm^3]
-    double p0 = 1.0;         // [mm]
-    double pressure(double p) const { return stiffness * (p + p * p / p0); }
-    double slope(double p) const { return stiffness * (1.0 + 2.0 * p / p0); }
+    double p0 = 0.5;         // [mm]
+    // damping of the contact [s]: the force also resists the rate of penetration with this times
+    // the penalty stiffness, which takes the energy out of the skin's impacts on the face
+    double damping_time = 2e-3;
+    double pressure(double p) const { return p < p0 ? stiffness * p * p / (2.0 * p0) : stiffness * (p - 0.5 * p0); }
+    double slope(double p) const { return p < p0 ? stiffness * p / p0 : stiffness; }
 };
+
+// The skin as the contact sees it: the patch grid's triangles (two per cell, cell k giving
+// triangles 2k and 2k + 1) and how finely each is sampled.
+struct PatchSurface {
+    int rows = 0, cols = 0;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::uint8_t> subdivision;  // k: the triangle carries k^2 samples
+    std::vector<double> sample_area;        // rest area of the triangle / k^2 [mm^2]
+};
+
+// `rest` holds 3 coordinates per node; samples end up at most `spacing` [mm] apart.
+PatchSurface make_patch_surface(int rows, int cols, const Eigen::VectorXd& rest, double spacing = 1.0);
 
 struct ProbeState {
     bool active = false;  // no probe, no contact
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  // face centre, world [mm]
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // probe frame to world
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // of the face, world [mm/s]
 };
 
 struct Contact {
@@ -53,23 +79,20 @@ struct ContactSet {
     Eigen::Vector3d axis = Eigen::Vector3d::UnitY();  // probe +y in world: into the tissue
     std::vector<Contact> contacts;
     double total_force = 0;  // sum of contact forces [N]: what pushes back on the probe
-
-    // scratch of the broad phase, sized once
-    std::vector<Eigen::Vector3d> local;  // node positions in the probe frame
-    std::vector<std::uint32_t> cell_start, cell_items;
-    std::vector<std::uint32_t> candidates;
-    int cells_x = 0, cells_z = 0;
+    GridBvh bvh{2, 2};
+    std::vector<std::uint32_t> cells;  // broad-phase result
 };
 
-ContactSet make_contact_set(std::size_t node_count, std::size_t triangle_count, const ProbeGeometry& geometry);
+ContactSet make_contact_set(const PatchSurface& surface);
 
-// Finds the contacts of the probe with the triangles of the mesh at positions `x` (3n) and adds
+// Finds the contacts of the probe with the skin at positions `x` (3n, velocities `v`) and adds
 // their forces into `force` (3n). Returns the number of contacts.
-int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeState& probe,
-            const std::vector<std::array<std::uint32_t, 3>>& triangles, const Eigen::VectorXd& x, ContactSet& set,
-            Eigen::VectorXd& force);
+int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeState& probe, const PatchSurface& surface,
+            const Eigen::VectorXd& x, const Eigen::VectorXd& v, ContactSet& set, Eigen::VectorXd& force);
 
-// Adds the contact stiffness' product h^2 * K_c * p into `out` (the implicit solver's matrix).
-void add_contact_product(const ContactSet& set, double h2, const Eigen::VectorXd& p, Eigen::VectorXd& out);
+// Adds (h D_c + h^2 K_c) p into `out`, the contact's share of the implicit solver's matrix, with
+// `h` the time step (h = 0 and h2 = 1 give K_c p alone).
+void add_contact_product(const ContactSet& set, const PenaltyLaw& law, double h, double h2, const Eigen::VectorXd& p,
+                         Eigen::VectorXd& out);
 
 }  // namespace echosim::contact

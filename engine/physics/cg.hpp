@@ -1,4 +1,4 @@
-// Stage 3: preconditioned conjugate gradient (Jacobi) on the implicit step's system A dv = rhs,
+// Stage 3: preconditioned conjugate gradient (block Jacobi) on the implicit step's system A dv = rhs,
 // matrix-free through system_product, warm-started from the previous step's dv. Uses the state's
 // scratch vectors; allocates nothing.
 #pragma once
@@ -16,6 +16,7 @@ struct CgResult {
 };
 
 // Solves for state.dv from state.rhs (fixed nodes' entries are zero in both).
-CgResult conjugate_gradient(const tissue::TissueModel& model, const PhysicsOptions& options, TissueState& state, double h);
+CgResult conjugate_gradient(const tissue::TissueModel& model, const PhysicsOptions& options, const contact::PenaltyLaw& law,
+                            TissueState& state, double h);
 
 }  // namespace echosim::physics

@@ -29,12 +29,10 @@ void zero_fixed(const TissueState& s, Eigen::VectorXd& vec)
 Scene make_scene(const tissue::TissueModel& model)
 {
     Scene scene;
-    for (int r = 0; r + 1 < model.rows; ++r)
-        for (int c = 0; c + 1 < model.cols; ++c) {
-            const auto a = model.node(r, c), b = model.node(r, c + 1), d = model.node(r + 1, c), e = model.node(r + 1, c + 1);
-            scene.triangles.push_back({a, d, e});
-            scene.triangles.push_back({a, e, b});
-        }
+    Eigen::VectorXd rest(Eigen::Index(3 * model.node_count()));
+    for (std::size_t i = 0; i < model.node_count(); ++i)
+        rest.segment<3>(3 * Eigen::Index(i)) = Eigen::Vector3d(model.positions[i].x, model.positions[i].y, model.positions[i].z);
+    scene.surface = contact::make_patch_surface(model.rows, model.cols, rest);
     return scene;
 }
 
@@ -46,16 +44,16 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
     // 1-2: contact and forces (the contact stage adds its penalty forces after the internal ones)
     accumulate_forces(model, options, s, relinearise);
     s.constant_jacobian_ready = true;
-    s.last.contacts = contact::collide(scene.probe, scene.penalty, s.probe, scene.triangles, s.x, s.contacts, s.force);
+    s.last.contacts = contact::collide(scene.probe, scene.penalty, s.probe, scene.surface, s.x, s.v, s.contacts, s.force);
     s.last.probe_force_N = s.contacts.total_force;
 
     // 3: integrate
     if (options.integrator == Integrator::implicit_euler) {
-        stiffness_product(model, s, s.v, s.product);
+        stiffness_product(model, scene.penalty, s, s.v, s.product);
         s.rhs = h * (s.force - h * s.product);
         zero_fixed(s, s.rhs);
         zero_fixed(s, s.dv);
-        const CgResult cg = conjugate_gradient(model, options, s, h);
+        const CgResult cg = conjugate_gradient(model, options, scene.penalty, s, h);
         s.last.cg_iterations = cg.iterations;
         s.last.cg_residual = cg.relative_residual;
         if (!cg.finite) s.dv.setConstant(std::nan(""));  // the guard below resets and counts it

@@ -19,7 +19,7 @@ namespace echosim::physics {
 
 // What a step needs besides the model and the state: the surface triangles and the probe's shape.
 struct Scene {
-    std::vector<std::array<std::uint32_t, 3>> triangles;
+    contact::PatchSurface surface;
     contact::ProbeGeometry probe;
     contact::PenaltyLaw penalty;
 };

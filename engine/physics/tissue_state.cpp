@@ -1,22 +1,24 @@
 #include "physics/tissue_state.hpp"
 
+#include "physics/step.hpp"
+
 #include <cmath>
 
 
 namespace echosim::physics {
 
-TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options)
+TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options, const Scene& scene)
 {
     TissueState s;
     const std::size_t n = model.node_count();
     const Eigen::Index dof = Eigen::Index(3 * n);
-    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.rest, &s.external, &s.force, &s.rhs, &s.dv, &s.residual, &s.direction, &s.product,
-                               &s.preconditioner, &s.z})
+    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.rest, &s.external, &s.force, &s.rhs, &s.dv, &s.residual, &s.direction, &s.product, &s.z})
         *v = Eigen::VectorXd::Zero(dof);
     s.inv_mass_scaled.resize(n);
     s.fixed.assign(model.boundary.begin(), model.boundary.end());
     s.springs.resize(model.springs.size());
     s.normals.resize(n);
+    s.preconditioner.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         s.rest.segment<3>(3 * Eigen::Index(i)) = Eigen::Vector3d(model.positions[i].x, model.positions[i].y, model.positions[i].z);
         const double m = model.mass[i] * 1e-3;  // masses in N s^2 / mm: see step.hpp on units
@@ -28,7 +30,7 @@ TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& o
         lin.lateral_stiffness = options.lateral_stiffness_ratio / model.b[i];
         lin.lateral_damping = 2.0 * options.normal_damping_ratio * std::sqrt(m * lin.lateral_stiffness);
     }
-    s.contacts = contact::make_contact_set(n, std::size_t(2 * (model.rows - 1) * (model.cols - 1)), contact::ProbeGeometry{});
+    s.contacts = contact::make_contact_set(scene.surface);
     reset_to_rest(model, s);
     return s;
 }

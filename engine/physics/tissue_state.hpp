@@ -21,6 +21,8 @@ namespace echosim::physics {
 struct SpringLinearisation {
     Eigen::Vector3d e = Eigen::Vector3d::Zero();  // unit direction i -> j
     double beta = 0;                              // max(0, 1 - rest / length)
+    // the system matrix's block h^2 K_s + h D_s = iso I + along e e^T, for the current step
+    double iso = 0, along = 0;
 };
 
 // Per-node support by the tissue column: the non-linear spring along the rest normal n (the paper's
@@ -32,6 +34,8 @@ struct NormalLinearisation {
     double damping = 0;            // d [N s/mm]
     double lateral_stiffness = 0;  // k_t [N/mm]
     double lateral_damping = 0;    // d_t [N s/mm]
+    // the system matrix's block for the current step: iso I + along n n^T
+    double iso = 0, along = 0;
 };
 
 struct StepStats {
@@ -52,7 +56,8 @@ struct TissueState {
     contact::ContactSet contacts;          // filled by the contact stage
 
     // scratch of the solver stages (sized once)
-    Eigen::VectorXd force, rhs, dv, residual, direction, product, preconditioner, z;
+    Eigen::VectorXd force, rhs, dv, residual, direction, product, z;
+    std::vector<Eigen::Matrix3d> preconditioner;  // block-Jacobi: inverse 3 x 3 diagonal blocks
     std::vector<SpringLinearisation> springs;
     std::vector<NormalLinearisation> normals;
     bool constant_jacobian_ready = false;
@@ -62,7 +67,8 @@ struct TissueState {
     std::int64_t steps = 0;
 };
 
-TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options);
+struct Scene;
+TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options, const Scene& scene);
 
 // Back to rest: positions, velocities and time; counters kept.
 void reset_to_rest(const tissue::TissueModel& model, TissueState& state);

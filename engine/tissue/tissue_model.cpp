@@ -19,7 +19,10 @@ TissueModel build_tissue_model(const scene::LegModel& leg, const SampleParameter
     m.rows = (SampleGrid::rows - 1) * refine + 1;
     m.cols = (SampleGrid::cols - 1) * refine + 1;
     m.lambda = params.lambda;
-    m.mu = params.mu;
+    // mu is not fitted but set for a damping ratio of one node's mass on its stiffness (fit.cpp);
+    // both scale by 1/r^2 with refinement, and so does mu. (lambda does not: a 2-D spring network's
+    // membrane stiffness is the same at any spacing.)
+    m.mu = params.mu / (double(refine) * double(refine));
     m.samples = params;
     const std::size_t n = std::size_t(m.rows) * std::size_t(m.cols);
     m.positions.resize(n);

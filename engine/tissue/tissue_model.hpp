@@ -10,6 +10,8 @@
 // physically meaningful quantities (rest stiffness 1/b and bottoming depth b/a). Each node then
 // carries 1/r^2 of a sample point's area, so its spring force is scaled by 1/r^2 (a and b by r^2,
 // which keeps b/a) and its mass likewise: the patch as a whole answers the same at any resolution.
+// The surface damping mu, set for a damping ratio of a node's mass, scales by 1/r^2 too; lambda
+// stays (a 2-D spring network's membrane stiffness does not depend on its spacing).
 #pragma once
 
 #include <array>

@@ -59,7 +59,7 @@ TEST(Physics, StaticEquilibriumUnderAKnownLoadMatchesTheInteractionModel)
     const tissue::TissueModel m = test::shipped_model(1);
     const PhysicsOptions o = quiet_options();
     const Scene scene = make_scene(m);
-    TissueState s = make_state(m, o);
+    TissueState s = make_state(m, o, scene);
     const int point = 27;
     const auto k = m.sample_node(point);
     std::fill(s.fixed.begin(), s.fixed.end(), 1);
@@ -79,7 +79,7 @@ TEST(Physics, EnergyDecaysWithoutExternalForce)
     const tissue::TissueModel m = test::shipped_model(2);
     const PhysicsOptions o = quiet_options();
     const Scene scene = make_scene(m);
-    TissueState s = make_state(m, o);
+    TissueState s = make_state(m, o, scene);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-2.0, 2.0);
     for (std::size_t i = 0; i < m.node_count(); ++i)
@@ -106,7 +106,7 @@ TEST(Physics, ExplicitEulerDivergesWhereImplicitStaysStable)
         PhysicsOptions o;
         o.time_step = 1e-3;
         o.integrator = integrator;
-        TissueState s = make_state(m, o);
+        TissueState s = make_state(m, o, scene);
         s.probe.active = true;
         s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
         const Eigen::Vector3d axis = s.probe.orientation * Eigen::Vector3d::UnitY();
@@ -126,6 +126,31 @@ TEST(Physics, ExplicitEulerDivergesWhereImplicitStaysStable)
     EXPECT_GT(explicit_.resets, 0) << "explicit Euler should blow up at 1 ms on this mesh";
 }
 
+TEST(Physics, SkinSettlesUnderAStillProbe)
+{
+    // pressed 10 mm and held: the contact forces derive from an energy and are damped, so the
+    // skin comes to rest and the force on the probe is steady (no chatter against the face)
+    const tissue::TissueModel m = test::shipped_model(7);
+    const Scene scene = make_scene(m);
+    PhysicsOptions o;
+    o.gravity.setZero();
+    TissueState s = make_state(m, o, scene);
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    s.probe.active = true;
+    s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
+    double lo = 1e9, hi = 0;
+    for (int i = 0; i < 400; ++i) {
+        const double press = 10.0 * std::min(1.0, (i + 1) / 100.0);
+        s.probe.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * (s.probe.orientation * Eigen::Vector3d::UnitY());
+        step(m, o, scene, s);
+        if (i >= 300) lo = std::min(lo, s.last.probe_force_N), hi = std::max(hi, s.last.probe_force_N);
+    }
+    EXPECT_GT(lo, 2.0);
+    EXPECT_LT(hi - lo, 0.01 * hi);
+    EXPECT_LT(kinetic_energy(m, s), 1e-6);
+    EXPECT_EQ(s.resets, 0);
+}
+
 TEST(Physics, TwoRunsGiveTheSameResult)
 {
     const tissue::TissueModel m = test::shipped_model(3);
@@ -133,7 +158,7 @@ TEST(Physics, TwoRunsGiveTheSameResult)
     const PhysicsOptions o;
     const Pose rest = test::leg().probe_rest_pose(0.4f, 0.6f);
     auto run = [&] {
-        TissueState s = make_state(m, o);
+        TissueState s = make_state(m, o, scene);
         s.probe.active = true;
         s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
         for (int i = 0; i < 150; ++i) {
@@ -153,7 +178,7 @@ TEST(Physics, StepAllocatesNothing)
     const tissue::TissueModel m = test::shipped_model(3);
     const Scene scene = make_scene(m);
     const PhysicsOptions o;
-    TissueState s = make_state(m, o);
+    TissueState s = make_state(m, o, scene);
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
     s.probe.active = true;
     s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
@@ -170,7 +195,7 @@ TEST(Physics, NanIsDetectedResetAndCounted)
     const tissue::TissueModel m = test::shipped_model(1);
     const Scene scene = make_scene(m);
     const PhysicsOptions o;
-    TissueState s = make_state(m, o);
+    TissueState s = make_state(m, o, scene);
     s.external[3 * 27] = std::nan("");
     step(m, o, scene, s);
     EXPECT_EQ(s.resets, 1);
