@@ -1,12 +1,49 @@
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <cstdio>
 #include <exception>
 
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
 #include "app/headless.hpp"
+#include "app/patch_deformer.hpp"
+#include "app/simulation.hpp"
 
 namespace echosim::app {
+namespace {
+
+// "yaw,pitch,distance" or "yaw,pitch,distance,x,y,z" or "yaw,pitch,distance,probe"
+void apply_camera(const std::string& text, DefaultScene& scene)
+{
+    std::vector<std::string> fields;
+    std::stringstream in(text);
+    for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+    if (fields.size() != 3 && fields.size() != 4 && fields.size() != 6)
+        throw std::invalid_argument("expected yaw,pitch,distance[,x,y,z|,probe], got '" + text + "'");
+    auto number = [&](std::size_t i, const char* name) {
+        char* end = nullptr;
+        const double v = std::strtod(fields[i].c_str(), &end);
+        if (end == fields[i].c_str() || *end != '\0' || !std::isfinite(v))
+            throw std::invalid_argument(std::string(name) + " is not a finite number: '" + fields[i] + "'");
+        return float(v);
+    };
+    scene.camera.yaw = number(0, "yaw");
+    scene.camera.pitch = number(1, "pitch");
+    scene.camera.distance = number(2, "distance");
+    if (!(scene.camera.distance > 0)) throw std::invalid_argument("distance must be positive");
+    if (fields.size() == 4) {
+        if (fields[3] != "probe") throw std::invalid_argument("the fourth field can only be 'probe'");
+        scene.camera.target = scene.probe_pose.position;
+    } else if (fields.size() == 6) {
+        scene.camera.target = {number(3, "x"), number(4, "y"), number(5, "z")};
+    }
+}
+
+}  // namespace
 
 int run_render(const RenderArgs& args)
 {
@@ -26,12 +63,34 @@ int run_render(const RenderArgs& args)
         }
     }
 
+    if (!args.camera.empty()) {
+        try {
+            apply_camera(args.camera, scene);
+        } catch (const std::invalid_argument& e) {
+            std::fprintf(stderr, "echosim render: --camera: %s\n", e.what());
+            return kExitBadInput;
+        }
+    }
+
     const auto start = std::chrono::steady_clock::now();
+    double force = 0;
+    if (args.press_mm >= 0) {
+        // the tissue simulated headless, in lock-step, until it settles under the pressed probe
+        const tissue::TissueModel model = load_simulation_model(scene.leg);
+        physics::PhysicsRunner runner(model, physics::PhysicsOptions{});
+        press_and_settle(runner, scene.probe_pose, args.press_mm);
+        const physics::SurfaceSnapshot& snap = runner.latest();
+        PatchDeformer(scene.leg, model).apply(snap.positions, scene.patch);
+        scene.probe_pose.position += float(args.press_mm) * scene.probe_pose.axis_y();
+        force = snap.probe_force_N;
+        if (snap.resets > 0) std::fprintf(stderr, "echosim render: the tissue simulation was reset %d times\n", snap.resets);
+    }
     const HeadlessFrame frame = render_headless(context_options(args.gpu), scene, args.width, args.height);
     io::write_png(args.out, frame.image);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("echosim render: wrote %s (%ux%u) on %s in %.0f ms\n", args.out.c_str(), frame.image.width,
                 frame.image.height, frame.device.c_str(), ms);
+    if (args.press_mm >= 0) std::printf("echosim render: probe pressed %.1f mm, tissue pushes back %.2f N\n", args.press_mm, force);
     if (frame.validation_messages > 0) {
         std::fprintf(stderr, "echosim render: Vulkan validation reported %u message(s)\n", frame.validation_messages);
         return kExitValidation;

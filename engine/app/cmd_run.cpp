@@ -7,6 +7,8 @@
 
 #include "app/commands.hpp"
 #include "app/default_scene.hpp"
+#include "app/patch_deformer.hpp"
+#include "app/simulation.hpp"
 #include "app/gpu_args.hpp"
 #include "gpu/window.hpp"
 
@@ -95,12 +97,21 @@ int run_window(const RunArgs& args)
         DefaultScene scene;
         gpu::WindowPresenter presenter(ctx, window);
         gpu::Renderer renderer(ctx, presenter.format(), scene.meshes());
-        std::printf("echosim run: %s, %ux%u; drag to orbit, scroll to zoom, arrows slide the probe, F11 fullscreen, Esc quits\n",
+        // the tissue runs in its own thread at 1 kHz; the window sends probe commands and draws
+        // the latest surface it published
+        const tissue::TissueModel model = load_simulation_model(scene.leg);
+        const PatchDeformer deformer(scene.leg, model);
+        physics::PhysicsRunner physics(model, physics::PhysicsOptions{});
+        physics.start();
+        std::printf("echosim run: %s, %ux%u; drag to orbit, scroll to zoom, arrows slide the probe, W/S press it in and out, "
+                    "F11 fullscreen, Esc quits\n",
                     ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
 
         Controls controls;
         install_callbacks(window.handle(), &controls);
         float u = 0.5f, v = 0.5f;  // probe position on the patch
+        double press = 0;          // [mm] into the skin
+        double last_title = 0, elapsed = 0;
         auto last = std::chrono::steady_clock::now();
         int loop = 0;
         while (!window.should_close() && (args.frames == 0 || presented < args.frames)) {
@@ -124,7 +135,25 @@ int run_window(const RunArgs& args)
             v += step * float((glfwGetKey(w, GLFW_KEY_RIGHT) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_LEFT) == GLFW_PRESS));
             u = std::clamp(u, 0.0f, 1.0f);
             v = std::clamp(v, 0.0f, 1.0f);
-            scene.probe_pose = scene.leg.probe_rest_pose(u, v);
+            // W/S press the probe in and out at 15 mm/s (the smoke test presses by script)
+            const double before = press;
+            press += 15.0 * dt * double((glfwGetKey(w, GLFW_KEY_W) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_S) == GLFW_PRESS));
+            if (args.exercise) press = 12.0 * std::min(1.0, loop / 40.0);
+            press = std::clamp(press, 0.0, 25.0);
+            const Pose rest = scene.leg.probe_rest_pose(u, v);
+            physics.command(pressed(rest, press, dt > 0 ? (press - before) / dt : 0.0));
+
+            const physics::SurfaceSnapshot& snap = physics.latest();
+            deformer.apply(snap.positions, scene.patch);
+            scene.probe_pose = rest;
+            scene.probe_pose.position += float(press) * rest.axis_y();
+            elapsed += dt;
+            if (elapsed - last_title > 0.2) {
+                char title[160];
+                std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", press, snap.probe_force_N);
+                glfwSetWindowTitle(w, title);
+                last_title = elapsed;
+            }
 
             if (presenter.draw(renderer, scene.frame_view()))
                 ++presented;
@@ -133,6 +162,10 @@ int run_window(const RunArgs& args)
             if (args.exercise && loop > 10000) break;  // a window system that never shows the window
         }
         swapchains = presenter.swapchain_generation();
+        physics.stop();
+        const physics::RunnerStats st = physics.stats();
+        std::printf("echosim run: physics stepped %lld times (%lld late), last probe force %.2f N\n", static_cast<long long>(st.steps),
+                    static_cast<long long>(st.overruns), physics.latest().probe_force_N);
     }
     std::printf("echosim run: presented %d frames, swapchain created %u times\n", presented, swapchains);
     const std::uint32_t n = messages->load();

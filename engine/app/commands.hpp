@@ -26,6 +26,8 @@ struct RenderArgs {
     std::uint32_t width = 1920;
     std::uint32_t height = 1080;
     std::string pose;  // empty: the probe rests on the patch centre
+    double press_mm = -1;  // < 0: no physics, the patch at rest
+    std::string camera;    // yaw,pitch,distance[,x,y,z]; empty: the default view
 };
 int run_render(const RenderArgs& args);
 

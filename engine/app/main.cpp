@@ -28,6 +28,11 @@ int main(int argc, char** argv)
     render_cmd->add_option("--width", render.width, "image width [px]")->check(CLI::Range(16u, 16384u));
     render_cmd->add_option("--height", render.height, "image height [px]")->check(CLI::Range(16u, 16384u));
     render_cmd->add_option("--pose", render.pose, "probe pose x,y,z,qw,qx,qy,qz in world (LPS mm)");
+    render_cmd->add_option("--press-mm", render.press_mm, "press the probe this far into the skin and let the tissue settle [mm]")
+        ->check(CLI::Range(0.0, 30.0));
+    render_cmd->add_option("--camera", render.camera,
+                           "orbit camera yaw,pitch [rad],distance [mm] and optionally its target x,y,z [mm]; "
+                           "target 'probe' looks at the probe");
     add_gpu_options(render_cmd, render.gpu);
 
     RunArgs run;

@@ -18,4 +18,9 @@ grep -q "presented 80 frames" "$log" || { echo "FAIL: did not present 80 frames"
 created=$(sed -n 's/.*swapchain created \([0-9]*\) times.*/\1/p' "$log")
 [[ ${created:-0} -ge 3 ]] || { echo "FAIL: swapchain created ${created:-0} times, expected at least 3"; exit 1; }
 ! grep -q "vulkan validation" "$log" || { echo "FAIL: validation messages"; exit 1; }
+# the physics thread ran beside the window and the scripted press (12 mm) met the tissue
+steps=$(sed -n 's/.*physics stepped \([0-9]*\) times.*/\1/p' "$log")
+[[ ${steps:-0} -ge 100 ]] || { echo "FAIL: physics stepped ${steps:-0} times"; exit 1; }
+force=$(sed -n 's/.*last probe force \([0-9.]*\) N.*/\1/p' "$log")
+awk -v f="${force:-0}" 'BEGIN { exit !(f > 1.0 && f < 100.0) }' || { echo "FAIL: probe force ${force:-none} N"; exit 1; }
 echo "PASS"

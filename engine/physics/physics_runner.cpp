@@ -1,0 +1,88 @@
+#include "physics/physics_runner.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace echosim::physics {
+namespace {
+
+SurfaceSnapshot prototype(const tissue::TissueModel& model)
+{
+    SurfaceSnapshot s;
+    s.positions.resize(3 * model.node_count());
+    for (std::size_t i = 0; i < model.node_count(); ++i)
+        for (int c = 0; c < 3; ++c) s.positions[3 * i + std::size_t(c)] = float(model.positions[i][c]);
+    return s;
+}
+
+}  // namespace
+
+PhysicsRunner::PhysicsRunner(const tissue::TissueModel& model, const PhysicsOptions& options)
+    : model_(model), options_(options), scene_(make_scene(model)), state_(make_state(model, options, scene_)),
+      out_(prototype(model))
+{
+}
+
+PhysicsRunner::~PhysicsRunner() { stop(); }
+
+void PhysicsRunner::command(const ProbeCommand& c)
+{
+    in_.write_slot() = c;
+    in_.publish();
+}
+
+void PhysicsRunner::step_once()
+{
+    const ProbeCommand& c = in_.read();
+    state_.probe.active = c.active;
+    state_.probe.position = c.position;
+    state_.probe.orientation = c.orientation;
+    state_.probe.velocity = c.velocity;
+    step(model_, options_, scene_, state_);
+
+    SurfaceSnapshot& s = out_.write_slot();
+    s.time = state_.time;
+    s.step = state_.steps;
+    for (Eigen::Index i = 0; i < state_.x.size(); ++i) s.positions[std::size_t(i)] = float(state_.x[i]);
+    s.probe_force_N = state_.last.probe_force_N;
+    s.contacts = state_.last.contacts;
+    s.cg_iterations = state_.last.cg_iterations;
+    s.resets = state_.resets;
+    out_.publish();
+    steps_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void PhysicsRunner::step_to(double t)
+{
+    if (running_) throw std::logic_error("PhysicsRunner::step_to while the physics thread runs");
+    while (state_.time + 0.5 * options_.time_step < t) step_once();
+}
+
+void PhysicsRunner::start()
+{
+    if (running_.exchange(true)) return;
+    thread_ = std::thread([this] {
+        using clock = std::chrono::steady_clock;
+        const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(options_.time_step));
+        auto due = clock::now();
+        while (running_.load(std::memory_order_relaxed)) {
+            step_once();
+            due += period;
+            const auto now = clock::now();
+            if (now > due + period) {
+                // fell behind by more than a step: count it and do not try to catch up in a burst
+                overruns_.fetch_add(1, std::memory_order_relaxed);
+                due = now;
+            }
+            std::this_thread::sleep_until(due);
+        }
+    });
+}
+
+void PhysicsRunner::stop()
+{
+    if (!running_.exchange(false)) return;
+    if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace echosim::physics

@@ -1,0 +1,83 @@
+// The physics thread (DESIGN.md §2, "Threads"): steps the tissue at a fixed rate and publishes a
+// snapshot of the surface after every step. Hand-offs, both lock-free triple buffers:
+//   in:  ProbeCommand   (latest wins) from whoever moves the probe (window, scripted exam, haptics)
+//   out: SurfaceSnapshot (latest wins) to one reader, the renderer
+// Headless runs do not start the thread: step_to(t) runs the same steps in the caller's thread on
+// simulated time, so an exam or a test is reproducible step for step.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "physics/physics_options.hpp"
+#include "physics/step.hpp"
+#include "physics/tissue_state.hpp"
+#include "physics/triple_buffer.hpp"
+#include "tissue/tissue_model.hpp"
+
+namespace echosim::physics {
+
+struct ProbeCommand {
+    bool active = false;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();  // face centre [mm]
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [mm/s]
+};
+
+struct SurfaceSnapshot {
+    double time = 0;                 // simulated [s]
+    std::int64_t step = 0;
+    std::vector<float> positions;    // 3 per node [mm]
+    double probe_force_N = 0;        // the tissue's push on the probe along its axis
+    int contacts = 0;
+    int cg_iterations = 0;
+    int resets = 0;
+};
+
+struct RunnerStats {
+    std::int64_t steps = 0;
+    std::int64_t overruns = 0;  // steps that started later than one period after they were due
+};
+
+class PhysicsRunner {
+public:
+    PhysicsRunner(const tissue::TissueModel& model, const PhysicsOptions& options);
+    ~PhysicsRunner();
+    PhysicsRunner(const PhysicsRunner&) = delete;
+    PhysicsRunner& operator=(const PhysicsRunner&) = delete;
+
+    // any one thread
+    void command(const ProbeCommand& c);
+    // the one reader
+    const SurfaceSnapshot& latest() { return out_.read(); }
+
+    // headless: step in this thread until the simulated time reaches t (not while running)
+    void step_to(double t);
+
+    // real time: a thread stepping every options.time_step of wall-clock time
+    void start();
+    void stop();
+    RunnerStats stats() const { return {steps_.load(), overruns_.load()}; }
+
+    const tissue::TissueModel& model() const { return model_; }
+
+private:
+    void step_once();
+
+    const tissue::TissueModel& model_;
+    PhysicsOptions options_;
+    Scene scene_;
+    TissueState state_;  // owned by whichever thread steps: the physics thread while it runs
+    TripleBuffer<ProbeCommand> in_;
+    TripleBuffer<SurfaceSnapshot> out_;
+    std::thread thread_;
+    std::atomic<bool> running_{false};
+    std::atomic<std::int64_t> steps_{0}, overruns_{0};
+};
+
+}  // namespace echosim::physics
