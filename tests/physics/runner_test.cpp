@@ -1,0 +1,81 @@
+#include "physics/physics_runner.hpp"
+
+#include <atomic>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "physics/physics_fixture.hpp"
+#include "physics/triple_buffer.hpp"
+
+namespace echosim::physics {
+namespace {
+
+TEST(TripleBuffer, ReaderSeesTheLatestWholeValue)
+{
+    TripleBuffer<std::array<int, 64>> buffer;
+    std::atomic<bool> done{false};
+    std::thread writer([&] {
+        for (int k = 1; k <= 200000; ++k) {
+            auto& slot = buffer.write_slot();
+            slot.fill(k);  // a torn read would mix two values
+            buffer.publish();
+        }
+        done = true;
+    });
+    int last = 0;
+    while (!done.load()) {
+        const auto& v = buffer.read();
+        for (int x : v) ASSERT_EQ(x, v[0]) << "torn value";
+        ASSERT_GE(v[0], last) << "went back in time";
+        last = v[0];
+    }
+    writer.join();
+    EXPECT_EQ(buffer.read()[0], 200000) << "the last value published is what the reader gets";
+}
+
+TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
+{
+    const tissue::TissueModel m = test::shipped_model(2);
+    const PhysicsOptions o;
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    ProbeCommand c;
+    c.active = true;
+    c.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
+    c.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 6.0 * (c.orientation * Eigen::Vector3d::UnitY());
+
+    PhysicsRunner runner(m, o);
+    runner.command(c);
+    runner.step_to(0.05);
+    const SurfaceSnapshot& snap = runner.latest();
+    EXPECT_EQ(snap.step, 50);
+
+    const Scene scene = make_scene(m);
+    TissueState s = make_state(m, o, scene);
+    s.probe.active = true;
+    s.probe.position = c.position;
+    s.probe.orientation = c.orientation;
+    for (int i = 0; i < 50; ++i) step(m, o, scene, s);
+    for (Eigen::Index i = 0; i < s.x.size(); ++i) ASSERT_EQ(snap.positions[std::size_t(i)], float(s.x[i]));
+    EXPECT_DOUBLE_EQ(snap.probe_force_N, s.last.probe_force_N);
+    EXPECT_GT(snap.probe_force_N, 0.5);
+}
+
+TEST(PhysicsRunner, ThreadStepsInRealTimeAndStops)
+{
+    const tissue::TissueModel m = test::shipped_model(1);
+    PhysicsRunner runner(m, PhysicsOptions{});
+    runner.start();
+    EXPECT_THROW(runner.step_to(1.0), std::logic_error) << "no lock-step while the thread owns the state";
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    runner.stop();
+    const auto st = runner.stats();
+    // about 200 steps at 1 kHz; a loaded CI machine may run late, never much early
+    EXPECT_GT(st.steps, 20);
+    EXPECT_LT(st.steps, 260);
+    EXPECT_EQ(runner.latest().step, st.steps);
+    EXPECT_NO_THROW(runner.step_to(runner.latest().time + 0.01));  // stopped: lock-step again
+}
+
+}  // namespace
+}  // namespace echosim::physics
