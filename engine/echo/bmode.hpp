@@ -1,0 +1,74 @@
+// B-mode image synthesis (DESIGN.md §1, "ultrasound data"): what a linear probe at a pose would
+// show of a medium. The model, per image:
+//   1. scatterers: each tissue scatters with its own strength; the scatterers are fixed in the
+//      body (a hash of the world position on a 0.1 mm lattice), so neighbouring frames see the same
+//      speckle, as a real sweep does, and a reconstructed volume can be checked against direct images;
+//      the beam's elevational thickness is summed over planes one lattice step apart either side of
+//      the image plane (the tissue taken from the image plane itself: an approximation only where a
+//      boundary runs obliquely through the slice);
+//   2. specular echoes where the tissue changes along the beam (vessel walls, fascia, bone), with
+//      the reflection coefficient of the two tissues' acoustic impedances;
+//   3. attenuation along the beam, tissue by tissue, less a time-gain compensation; what a strong
+//      reflector (bone) does not transmit is missing below it: the acoustic shadow;
+//   4. the complex (I/Q) field convolved with the point-spread function (Gaussian axially and
+//      laterally), its magnitude the envelope: Rayleigh-distributed speckle where scatterers are
+//      dense (envelope mean / standard deviation = 1.91);
+//   5. log compression to 8 bits over the dynamic range (log_compress.hpp, the GPU kernel's maths).
+// Image geometry (PLUS "MF"): columns along the probe's +x (lateral), rows along +y (depth); the
+// pixel (i, j) centre lies at x = (i + 0.5) * pixel - width / 2, y = (j + 0.5) * pixel.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/pose.hpp"
+#include "echo/phantom.hpp"
+
+namespace echosim::echo {
+
+// What the synthesis asks of the body it images.
+class Medium {
+public:
+    virtual ~Medium() = default;
+    virtual Tissue tissue_at(const glm::dvec3& world) const = 0;
+};
+
+struct ProbeSpec {
+    double width_mm = 40.0;
+    double depth_mm = 50.0;
+    double pixel_mm = 0.1;
+    double frequency_mhz = 10.0;
+    double axial_fwhm_mm = 0.3;      // pulse length
+    double lateral_fwhm_mm = 0.6;    // beam width at focus
+    double elevational_fwhm_mm = 1.2;  // slice thickness, sampled by planes one scatterer apart
+    double tgc_db_per_cm_mhz = 0.75;  // time-gain compensation, as for soft tissue (round trip applied inside)
+    double dynamic_range_db = 55.0;
+    double gain_db = 0.0;
+    bool texture = true;             // muscle fibres and fat septa (off: plain speckle, for tests)
+
+    std::uint32_t columns() const { return std::uint32_t(width_mm / pixel_mm + 0.5); }
+    std::uint32_t rows() const { return std::uint32_t(depth_mm / pixel_mm + 0.5); }
+};
+
+struct BModeImage {
+    std::uint32_t width = 0, height = 0;  // columns, rows
+    std::vector<std::uint8_t> pixels;     // log-compressed grey, row-major, row 0 at the skin
+    std::vector<float> envelope;          // before log compression
+    std::vector<std::uint8_t> labels;     // Tissue in the image plane
+};
+
+BModeImage synthesize(const Medium& medium, const Pose& probe, const ProbeSpec& spec);
+
+// The phantom as a medium.
+class PhantomMedium : public Medium {
+public:
+    explicit PhantomMedium(const Phantom& p) : phantom_(p) {}
+    Tissue tissue_at(const glm::dvec3& world) const override { return phantom_.tissue_at(world); }
+
+private:
+    const Phantom& phantom_;
+};
+
+}  // namespace echosim::echo
