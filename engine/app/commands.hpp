@@ -56,6 +56,28 @@ struct FitArgs {
 };
 int run_fit(const FitArgs& args);
 
+struct PhantomArgs {
+    std::string case_name = "healthy";
+    std::filesystem::path out;
+    std::filesystem::path labels;  // the phantom's label map (NRRD); empty: none
+    int frames = 240;
+    double pixel_mm = 0.1;
+    std::uint64_t seed = 1;
+    bool compressed = false;
+};
+int run_phantom(const PhantomArgs& args);
+
+struct ReconstructArgs {
+    std::filesystem::path sweep;
+    std::filesystem::path out;
+    double voxel_mm = 0.3;
+    std::string splat = "trilinear";
+    std::string compound = "mean";
+    std::uint64_t budget_mb = 4096;
+    bool gzip = false;
+};
+int run_reconstruct(const ReconstructArgs& args);
+
 struct BenchArgs {
     GpuArgs gpu;
     std::vector<std::string> names;  // empty: all

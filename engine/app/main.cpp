@@ -58,6 +58,26 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"lm", "steepest"}));
     fit_cmd->add_flag("--json", fit.json, "print a JSON summary on stdout");
 
+    PhantomArgs phantom;
+    auto* phantom_cmd = app.add_subcommand("phantom", "a tracked B-mode sweep of the thigh phantom, as a PLUS sequence file");
+    phantom_cmd->add_option("--case", phantom.case_name, "healthy, dvt-acute or dvt-chronic");
+    phantom_cmd->add_option("--out", phantom.out, "sweep to write (.mha); its frames' labels go beside it (.labels.mha)")->required();
+    phantom_cmd->add_option("--labels", phantom.labels, "also write the phantom's label map (NRRD, 0.3 mm)");
+    phantom_cmd->add_option("--frames", phantom.frames, "frames in the sweep")->check(CLI::Range(2, 5000));
+    phantom_cmd->add_option("--pixel-mm", phantom.pixel_mm, "image pixel size [mm]")->check(CLI::Range(0.02, 1.0));
+    phantom_cmd->add_option("--seed", phantom.seed, "random seed of the hand tremor");
+    phantom_cmd->add_flag("--compressed", phantom.compressed, "zlib-compress the pixels");
+
+    ReconstructArgs reconstruct;
+    auto* reconstruct_cmd = app.add_subcommand("reconstruct", "freehand 3D reconstruction of a tracked sweep into an NRRD volume");
+    reconstruct_cmd->add_option("--sweep", reconstruct.sweep, "PLUS sequence (.mha or .seq.nrrd)")->required();
+    reconstruct_cmd->add_option("--out", reconstruct.out, "volume to write (.nrrd); labels beside it when the sweep has them")->required();
+    reconstruct_cmd->add_option("--voxel-mm", reconstruct.voxel_mm, "voxel size [mm]")->check(CLI::Range(0.02, 10.0));
+    reconstruct_cmd->add_option("--splat", reconstruct.splat, "nearest or trilinear")->check(CLI::IsMember({"nearest", "trilinear"}));
+    reconstruct_cmd->add_option("--compound", reconstruct.compound, "mean or max")->check(CLI::IsMember({"mean", "max"}));
+    reconstruct_cmd->add_option("--budget-mb", reconstruct.budget_mb, "refuse volumes that need more memory [MiB]");
+    reconstruct_cmd->add_flag("--gzip", reconstruct.gzip, "gzip the volume's voxels");
+
     BenchArgs bench;
     auto* bench_cmd = app.add_subcommand("bench", "run the benchmarks and print a table");
     bench_cmd->add_option("names", bench.names, "benchmarks to run (default: all)");
@@ -74,6 +94,8 @@ int main(int argc, char** argv)
         if (bench_cmd->parsed()) return run_bench(bench);
         if (measure_cmd->parsed()) return run_measure(measure);
         if (fit_cmd->parsed()) return run_fit(fit);
+        if (phantom_cmd->parsed()) return run_phantom(phantom);
+        if (reconstruct_cmd->parsed()) return run_reconstruct(reconstruct);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;

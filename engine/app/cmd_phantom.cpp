@@ -1,0 +1,99 @@
+#include <cstdio>
+
+#include <glm/common.hpp>
+
+#include "app/commands.hpp"
+#include "echo/phantom.hpp"
+#include "echo/sweep.hpp"
+#include "io/nrrd.hpp"
+#include "io/plus_sequence.hpp"
+
+namespace echosim::app {
+namespace {
+
+// The frames' corners, to bound a volume around the sweep [mm].
+void sweep_bounds(const io::Sweep& s, glm::dvec3& lo, glm::dvec3& hi)
+{
+    lo = glm::dvec3(1e300);
+    hi = glm::dvec3(-1e300);
+    for (const auto& f : s.frames)
+        for (double c : {0.0, double(s.width - 1)})
+            for (double r : {0.0, double(s.height - 1)}) {
+                const glm::dvec3 p(f.image_to_reference * glm::dvec4(c, r, 0, 1));
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+}
+
+}  // namespace
+
+std::filesystem::path label_sweep_path(const std::filesystem::path& sweep)
+{
+    std::string name = sweep.filename().string();
+    const auto dot = name.find('.');
+    name = (dot == std::string::npos ? name : name.substr(0, dot)) + ".labels.mha";
+    return sweep.parent_path() / name;
+}
+
+int run_phantom(const PhantomArgs& args)
+{
+    echo::Case which;
+    try {
+        which = echo::parse_case(args.case_name);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "echosim phantom: --case: %s\n", e.what());
+        return kExitBadInput;
+    }
+    for (const auto& p : {args.out, args.labels}) {
+        if (p.empty()) continue;
+        const auto parent = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+        if (!std::filesystem::is_directory(parent)) {
+            std::fprintf(stderr, "echosim phantom: %s: folder %s does not exist\n", p.c_str(), parent.c_str());
+            return kExitBadInput;
+        }
+    }
+    const scene::LegModel leg;
+    const echo::Phantom phantom(leg, which);
+    const echo::PhantomMedium medium(phantom);
+    echo::SweepOptions options;
+    options.frames = args.frames;
+    options.seed = args.seed;
+    options.spec.pixel_mm = args.pixel_mm;
+    const echo::TrackedSweep sweep = echo::make_sweep(leg, medium, options, [](int done, int total) {
+        if (done % 20 == 0 || done == total) std::fprintf(stderr, "\rechosim phantom: frame %d of %d", done, total);
+        if (done == total) std::fprintf(stderr, "\n");
+    });
+    io::write_plus_mha(args.out, sweep.sweep, args.compressed);
+    // the frames' tissue labels, a sweep of their own beside it, for reconstructing the labels
+    io::Sweep labels = sweep.sweep;
+    labels.pixels = sweep.labels;
+    const auto label_path = label_sweep_path(args.out);
+    io::write_plus_mha(label_path, labels, true);
+    std::printf("echosim phantom: %s case, %zu frames of %ux%u (%.2f mm pixels) in %s, their labels in %s\n",
+                echo::case_name(which), sweep.sweep.frames.size(), sweep.sweep.width, sweep.sweep.height, args.pixel_mm,
+                args.out.c_str(), label_path.c_str());
+
+    if (!args.labels.empty()) {
+        // the phantom's own label map over the sweep: the ground truth for a reconstruction
+        glm::dvec3 lo, hi;
+        sweep_bounds(sweep.sweep, lo, hi);
+        const double voxel = 0.3;
+        io::Volume v = io::make_volume({std::size_t((hi.x - lo.x) / voxel) + 1, std::size_t((hi.y - lo.y) / voxel) + 1,
+                                        std::size_t((hi.z - lo.z) / voxel) + 1},
+                                       io::VoxelType::uint8);
+        v.origin = lo;
+        v.directions = glm::dmat3(voxel);
+        std::uint8_t* d = v.as<std::uint8_t>();
+        for (std::size_t k = 0; k < v.size[2]; ++k)
+            for (std::size_t j = 0; j < v.size[1]; ++j)
+                for (std::size_t i = 0; i < v.size[0]; ++i)
+                    d[v.index(i, j, k)] = std::uint8_t(phantom.tissue_at(v.index_to_world(glm::dvec3(double(i), double(j), double(k)))));
+        for (int t = 0; t < echo::kTissueCount; ++t) v.key_values["label_" + std::to_string(t)] = echo::tissue_name(echo::Tissue(t));
+        v.key_values["case"] = echo::case_name(which);
+        io::write_nrrd(args.labels, v, true);
+        std::printf("echosim phantom: label map %zux%zux%zu (0.3 mm) in %s\n", v.size[0], v.size[1], v.size[2], args.labels.c_str());
+    }
+    return kExitOk;
+}
+
+}  // namespace echosim::app

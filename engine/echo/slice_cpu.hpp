@@ -1,0 +1,23 @@
+// One image sliced out of a volume at a probe pose (paper §6): the CPU reference of the image
+// pipeline's slice stage, used to validate reconstructions against images synthesised directly.
+// Grey values are sampled trilinearly, labels by nearest voxel; outside the volume both are 0.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/pose.hpp"
+#include "echo/bmode.hpp"
+#include "io/nrrd.hpp"
+
+namespace echosim::echo {
+
+std::vector<std::uint8_t> slice_grey(const io::Volume& volume, const Pose& pose, const ProbeSpec& spec);
+std::vector<std::uint8_t> slice_labels(const io::Volume& labels, const Pose& pose, const ProbeSpec& spec);
+
+// Image similarity over the pixels where `mask` is non-zero (all when empty).
+double normalised_cross_correlation(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
+                                    const std::vector<std::uint8_t>& mask = {});
+double psnr_db(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, const std::vector<std::uint8_t>& mask = {});
+
+}  // namespace echosim::echo
