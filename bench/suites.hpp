@@ -10,5 +10,6 @@ namespace echosim::bench {
 std::shared_ptr<void> register_render(const SuiteOptions& options);
 std::shared_ptr<void> register_fit(const SuiteOptions& options);
 std::shared_ptr<void> register_physics(const SuiteOptions& options);
+std::shared_ptr<void> register_reconstruct(const SuiteOptions& options);
 
 }  // namespace echosim::bench

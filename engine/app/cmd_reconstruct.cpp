@@ -2,6 +2,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <vector>
+
 #include <glm/common.hpp>
 
 #include "app/commands.hpp"
@@ -27,22 +29,15 @@ int run_reconstruct(const ReconstructArgs& args)
     }
     const bool with_labels = labels.frames.size() == sweep.frames.size() && labels.width == sweep.width && labels.height == sweep.height;
 
-    glm::dvec3 lo(1e300), hi(-1e300);
-    std::size_t valid = 0;
-    for (const auto& f : sweep.frames) {
-        if (!f.valid) continue;
-        ++valid;
-        for (double c : {0.0, double(sweep.width - 1)})
-            for (double r : {0.0, double(sweep.height - 1)}) {
-                const glm::dvec3 p(f.image_to_reference * glm::dvec4(c, r, 0, 1));
-                lo = glm::min(lo, p);
-                hi = glm::max(hi, p);
-            }
-    }
+    std::vector<glm::dmat4> transforms;
+    for (const auto& f : sweep.frames)
+        if (f.valid) transforms.push_back(f.image_to_reference);
+    const std::size_t valid = transforms.size();
     if (valid == 0) {
         std::fprintf(stderr, "echosim reconstruct: %s: no frame has a valid transform\n", args.sweep.c_str());
         return kExitBadInput;
     }
+    const echo::SweepBox box = echo::sweep_box(transforms, sweep.width, sweep.height);
     echo::ReconstructOptions options;
     options.voxel_mm = args.voxel_mm;
     options.splat = args.splat == "nearest" ? echo::Splat::nearest : echo::Splat::trilinear;
@@ -51,7 +46,7 @@ int run_reconstruct(const ReconstructArgs& args)
     const glm::dvec3 margin(options.voxel_mm);
     std::unique_ptr<echo::Reconstructor> r;
     try {
-        r = std::make_unique<echo::Reconstructor>(lo - margin, hi + margin, options);
+        r = std::make_unique<echo::Reconstructor>(box.lo - margin, box.hi + margin, options, box.axes);
     } catch (const std::runtime_error& e) {
         std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
         return kExitBadInput;

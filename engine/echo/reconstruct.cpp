@@ -1,6 +1,9 @@
 #include "echo/reconstruct.hpp"
 
 #include <algorithm>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -25,8 +28,33 @@ std::uint64_t reconstruction_bytes(const glm::dvec3& box, double voxel)
     return std::uint64_t(n[0]) * n[1] * n[2] * kBytesPerVoxel;
 }
 
-Reconstructor::Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const ReconstructOptions& options)
-    : options_(options), origin_(lo)
+SweepBox sweep_box(std::span<const glm::dmat4> frames, std::uint32_t width, std::uint32_t height)
+{
+    glm::dvec3 lateral(0.0), beam(0.0);
+    for (const glm::dmat4& m : frames) {
+        lateral += glm::normalize(glm::dvec3(m[0]));
+        beam += glm::normalize(glm::dvec3(m[1]));
+    }
+    SweepBox box;
+    if (frames.empty()) return box;
+    const glm::dvec3 x = glm::normalize(lateral);
+    const glm::dvec3 z = glm::normalize(glm::cross(x, beam));
+    box.axes = glm::dmat3(x, glm::cross(z, x), z);
+    const glm::dmat3 to_box = glm::transpose(box.axes);
+    box.lo = glm::dvec3(1e300);
+    box.hi = glm::dvec3(-1e300);
+    for (const glm::dmat4& m : frames)
+        for (double c : {0.0, double(width - 1)})
+            for (double r : {0.0, double(height - 1)}) {
+                const glm::dvec3 p = to_box * glm::dvec3(m * glm::dvec4(c, r, 0, 1));
+                box.lo = glm::min(box.lo, p);
+                box.hi = glm::max(box.hi, p);
+            }
+    return box;
+}
+
+Reconstructor::Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const ReconstructOptions& options, const glm::dmat3& axes)
+    : options_(options), axes_(axes), lo_(lo)
 {
     if (!(options.voxel_mm > 0) || !std::isfinite(options.voxel_mm))
         throw std::invalid_argument("voxel size must be a positive number of millimetres");
@@ -56,9 +84,10 @@ void Reconstructor::insert(std::span<const std::uint8_t> pixels, std::span<const
     if (with_labels && labels.size() != pixels.size()) throw std::invalid_argument("frame labels do not match its size");
     // pixel (c, r) -> continuous voxel index: affine, so step along rows and columns
     const double inv = 1.0 / options_.voxel_mm;
-    const glm::dvec3 p0 = (glm::dvec3(image_to_world * glm::dvec4(0, 0, 0, 1)) - origin_) * inv;
-    const glm::dvec3 dc = glm::dvec3(image_to_world * glm::dvec4(1, 0, 0, 0)) * inv;
-    const glm::dvec3 dr = glm::dvec3(image_to_world * glm::dvec4(0, 1, 0, 0)) * inv;
+    const glm::dmat3 to_map = glm::transpose(axes_);
+    const glm::dvec3 p0 = (to_map * glm::dvec3(image_to_world * glm::dvec4(0, 0, 0, 1)) - lo_) * inv;
+    const glm::dvec3 dc = to_map * glm::dvec3(image_to_world * glm::dvec4(1, 0, 0, 0)) * inv;
+    const glm::dvec3 dr = to_map * glm::dvec3(image_to_world * glm::dvec4(0, 1, 0, 0)) * inv;
     const double nx = double(size_[0] - 1), ny = double(size_[1] - 1), nz = double(size_[2] - 1);
     const bool mean = options_.compounding == Compounding::mean;
 
@@ -175,8 +204,8 @@ int Reconstructor::fill_holes(const std::function<void(double)>& progress)
 io::Volume Reconstructor::volume() const
 {
     io::Volume v = io::make_volume(size_, io::VoxelType::uint8);
-    v.origin = origin_;
-    v.directions = glm::dmat3(options_.voxel_mm);
+    v.origin = axes_ * lo_;
+    v.directions = axes_ * options_.voxel_mm;
     std::uint8_t* out = v.as<std::uint8_t>();
     const bool mean = options_.compounding == Compounding::mean;
     for (std::size_t k = 0; k < value_.size(); ++k) {
@@ -190,8 +219,8 @@ io::Volume Reconstructor::volume() const
 io::Volume Reconstructor::labels() const
 {
     io::Volume v = io::make_volume(size_, io::VoxelType::uint8);
-    v.origin = origin_;
-    v.directions = glm::dmat3(options_.voxel_mm);
+    v.origin = axes_ * lo_;
+    v.directions = axes_ * options_.voxel_mm;
     std::copy(label_.begin(), label_.end(), v.as<std::uint8_t>());
     return v;
 }

@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -35,11 +36,22 @@ struct ReconstructOptions {
 // The reconstruction's working memory for a box of the given size: what the budget is checked on.
 std::uint64_t reconstruction_bytes(const glm::dvec3& box_mm, double voxel_mm);
 
+// The axes of a map aligned with a sweep (the frames' mean lateral and beam directions) and the
+// box its frames span in those axes.
+struct SweepBox {
+    glm::dmat3 axes{1.0};
+    glm::dvec3 lo{0.0}, hi{0.0};
+};
+SweepBox sweep_box(std::span<const glm::dmat4> image_to_world, std::uint32_t width, std::uint32_t height);
+
 class Reconstructor {
 public:
-    // The voxel map covers [lo, hi] (world LPS mm, axis-aligned). Throws std::runtime_error when it
-    // would exceed the memory budget, saying how much it needs.
-    Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const ReconstructOptions& options);
+    // The voxel map covers the box [lo, hi] of the frame whose orthonormal axes (columns of `axes`)
+    // are given in world LPS: a map aligned with the sweep holds far fewer empty voxels than one
+    // aligned with the world. Throws std::runtime_error when it would exceed the memory budget,
+    // saying how much it needs.
+    Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const ReconstructOptions& options,
+                  const glm::dmat3& axes = glm::dmat3(1.0));
 
     // One frame: width x height 8-bit pixels, row-major; image_to_world maps (column, row, 0, 1)
     // in pixels to world mm. labels may be empty.
@@ -60,7 +72,8 @@ private:
     std::size_t index(std::size_t i, std::size_t j, std::size_t k) const { return (k * size_[1] + j) * size_[0] + i; }
 
     ReconstructOptions options_;
-    glm::dvec3 origin_;
+    glm::dmat3 axes_;       // the map's axes in world
+    glm::dvec3 lo_;         // the box's corner in the map's frame [mm]
     std::array<std::size_t, 3> size_{};
     std::vector<float> value_;   // weighted sum (mean) or maximum
     std::vector<float> weight_;  // 0: a hole

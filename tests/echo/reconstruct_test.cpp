@@ -113,16 +113,12 @@ protected:
         spec_ = o.spec;
         const PhantomMedium medium(*phantom_);
         const TrackedSweep sweep = make_sweep(*leg_, medium, o);
-        glm::dvec3 lo(1e9), hi(-1e9);
-        for (const auto& f : sweep.sweep.frames)
-            for (double c : {0.0, double(sweep.sweep.width - 1)})
-                for (double r : {0.0, double(sweep.sweep.height - 1)}) {
-                    const glm::dvec3 p(f.image_to_reference * glm::dvec4(c, r, 0, 1));
-                    lo = glm::min(lo, p), hi = glm::max(hi, p);
-                }
+        std::vector<glm::dmat4> transforms;
+        for (const auto& f : sweep.sweep.frames) transforms.push_back(f.image_to_reference);
+        const SweepBox box = sweep_box(transforms, sweep.sweep.width, sweep.sweep.height);
         ReconstructOptions ro;
         ro.voxel_mm = 0.3;
-        Reconstructor rec(lo, hi, ro);
+        Reconstructor rec(box.lo, box.hi, ro, box.axes);
         for (std::size_t f = 0; f < sweep.sweep.frames.size(); ++f)
             rec.insert({sweep.sweep.frame_pixels(f), sweep.sweep.frame_bytes()}, {sweep.labels.data() + f * sweep.sweep.frame_bytes(), sweep.sweep.frame_bytes()},
                        sweep.sweep.width, sweep.sweep.height, sweep.sweep.frames[f].image_to_reference);
