@@ -4,28 +4,12 @@
 
 #include "app/commands.hpp"
 #include "echo/phantom.hpp"
+#include "echo/reconstruct.hpp"
 #include "echo/sweep.hpp"
 #include "io/nrrd.hpp"
 #include "io/plus_sequence.hpp"
 
 namespace echosim::app {
-namespace {
-
-// The frames' corners, to bound a volume around the sweep [mm].
-void sweep_bounds(const io::Sweep& s, glm::dvec3& lo, glm::dvec3& hi)
-{
-    lo = glm::dvec3(1e300);
-    hi = glm::dvec3(-1e300);
-    for (const auto& f : s.frames)
-        for (double c : {0.0, double(s.width - 1)})
-            for (double r : {0.0, double(s.height - 1)}) {
-                const glm::dvec3 p(f.image_to_reference * glm::dvec4(c, r, 0, 1));
-                lo = glm::min(lo, p);
-                hi = glm::max(hi, p);
-            }
-}
-
-}  // namespace
 
 std::filesystem::path label_sweep_path(const std::filesystem::path& sweep)
 {
@@ -74,15 +58,17 @@ int run_phantom(const PhantomArgs& args)
                 args.out.c_str(), label_path.c_str());
 
     if (!args.labels.empty()) {
-        // the phantom's own label map over the sweep: the ground truth for a reconstruction
-        glm::dvec3 lo, hi;
-        sweep_bounds(sweep.sweep, lo, hi);
+        // the phantom's own label map over the box the sweep spans, aligned with it as the
+        // reconstruction's map is
+        std::vector<glm::dmat4> transforms;
+        for (const auto& f : sweep.sweep.frames) transforms.push_back(f.image_to_reference);
+        const echo::SweepBox box = echo::sweep_box(transforms, sweep.sweep.width, sweep.sweep.height);
         const double voxel = 0.3;
-        io::Volume v = io::make_volume({std::size_t((hi.x - lo.x) / voxel) + 1, std::size_t((hi.y - lo.y) / voxel) + 1,
-                                        std::size_t((hi.z - lo.z) / voxel) + 1},
+        io::Volume v = io::make_volume({std::size_t((box.hi.x - box.lo.x) / voxel) + 1, std::size_t((box.hi.y - box.lo.y) / voxel) + 1,
+                                        std::size_t((box.hi.z - box.lo.z) / voxel) + 1},
                                        io::VoxelType::uint8);
-        v.origin = lo;
-        v.directions = glm::dmat3(voxel);
+        v.origin = box.axes * box.lo;
+        v.directions = box.axes * voxel;
         std::uint8_t* d = v.as<std::uint8_t>();
         for (std::size_t k = 0; k < v.size[2]; ++k)
             for (std::size_t j = 0; j < v.size[1]; ++j)

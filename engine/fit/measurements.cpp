@@ -11,6 +11,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "io/partial_file.hpp"
+
 namespace echosim::fit {
 namespace {
 
@@ -119,26 +121,16 @@ MeasurementSet read_measurements(const std::filesystem::path& path)
 
 void write_measurements(const std::filesystem::path& path, const MeasurementSet& set)
 {
-    std::filesystem::path tmp = path;
-    tmp += ".partial";
-    {
-        std::ofstream out(tmp);
-        if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
-        for (const auto& c : set.comments) out << '#' << c << '\n';
-        out << "point,probe,x_mm,y_mm,z_mm,nx,ny,nz,depth_mm,force_N\n";
-        char row[256];
-        for (const Sample& s : set.samples) {
-            std::snprintf(row, sizeof row, "%d,%s,%.3f,%.3f,%.3f,%.5f,%.5f,%.5f,%.2f,%.3f\n", s.point, to_string(s.probe),
-                          s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z, s.depth_mm, s.force_N);
-            out << row;
-        }
-        out.flush();
-        if (!out) {
-            std::filesystem::remove(tmp);
-            throw std::runtime_error(path.string() + ": write failed");
-        }
+    io::PartialFile<std::runtime_error> out(path);
+    for (const auto& c : set.comments) out.write("#" + c + "\n");
+    out.write(std::string("point,probe,x_mm,y_mm,z_mm,nx,ny,nz,depth_mm,force_N\n"));
+    char row[256];
+    for (const Sample& s : set.samples) {
+        const int n = std::snprintf(row, sizeof row, "%d,%s,%.3f,%.3f,%.3f,%.5f,%.5f,%.5f,%.2f,%.3f\n", s.point, to_string(s.probe),
+                                    s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z, s.depth_mm, s.force_N);
+        out.write(row, std::size_t(n));
     }
-    std::filesystem::rename(tmp, path);
+    out.commit();
 }
 
 }  // namespace echosim::fit

@@ -1,5 +1,8 @@
 #include "io/nrrd.hpp"
 
+#include "io/partial_file.hpp"
+#include "io/text_fields.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -23,6 +26,11 @@
 namespace echosim::io {
 namespace {
 
+using text::format_double;
+using text::parse_double;
+using text::split_whitespace;
+using text::trim;
+
 constexpr std::size_t max_header_line = std::size_t(1) << 20;  // [bytes] a longer "line" is binary junk
 constexpr std::size_t zlib_chunk = std::size_t(1) << 20;        // [bytes] file reads and writes around zlib
 
@@ -33,45 +41,11 @@ constexpr std::size_t zlib_chunk = std::size_t(1) << 20;        // [bytes] file 
 
 std::string quote_text(std::string_view s) { return "'" + std::string(s) + "'"; }
 
-std::string_view trim(std::string_view s)
-{
-    const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string_view::npos) return {};
-    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
-}
-
 std::string lower(std::string_view s)
 {
     std::string out(s);
     for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
     return out;
-}
-
-std::vector<std::string_view> split_whitespace(std::string_view s)
-{
-    std::vector<std::string_view> out;
-    std::size_t pos = 0;
-    while ((pos = s.find_first_not_of(" \t", pos)) != std::string_view::npos) {
-        const auto end = std::min(s.find_first_of(" \t", pos), s.size());
-        out.push_back(s.substr(pos, end - pos));
-        pos = end;
-    }
-    return out;
-}
-
-// A whole token as a double ("nan" and "inf" parse, so callers can say "non-finite").
-bool parse_double(std::string_view s, double& out)
-{
-    if (s.size() > 1 && s[0] == '+') s.remove_prefix(1);  // from_chars takes no '+'
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-    return ec == std::errc() && end == s.data() + s.size() && !s.empty();
-}
-
-std::string format_double(double v)
-{
-    char buf[32];
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);  // shortest form that reads back exactly
-    return ec == std::errc() ? std::string(buf, end) : std::string("nan");
 }
 
 // NRRD key/value escaping: a backslash and a newline are written as \\ and \n.
@@ -100,24 +74,9 @@ std::string unescape(std::string_view s)
     return out;
 }
 
-// One header line without its "\n" or "\r\n"; false at the end of the input.
 bool read_line(std::istream& in, std::string& line, const std::filesystem::path& path)
 {
-    line.clear();
-    std::streambuf* buf = in.rdbuf();
-    for (;;) {
-        const int c = buf->sbumpc();
-        if (c == std::char_traits<char>::eof()) {
-            in.setstate(std::ios::eofbit);
-            if (line.empty()) return false;
-            break;
-        }
-        if (c == '\n') break;
-        if (line.size() >= max_header_line) fail(path, "header line longer than 1 MiB: not a NRRD header");
-        line.push_back(char(c));
-    }
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    return true;
+    return text::read_line(in, line, max_header_line, [&] { fail(path, "header line longer than 1 MiB: not a NRRD header"); });
 }
 
 // The field names the spec allows in two spellings, mapped to one.
@@ -241,50 +200,7 @@ bool is_singular(const glm::dmat3& m)
     return !(std::abs(glm::determinant(m)) > 1e-12 * scale);
 }
 
-// Writes FILE.partial and renames it over FILE once complete; removes the partial file on failure.
-class PartialFile {
-public:
-    explicit PartialFile(const std::filesystem::path& path) : path_(path), tmp_(path)
-    {
-        tmp_ += ".partial";
-        file_ = std::fopen(tmp_.c_str(), "wb");
-        if (!file_) fail(path_, "cannot open " + tmp_.string() + " for writing: " + std::generic_category().message(errno));
-    }
-    PartialFile(const PartialFile&) = delete;
-    PartialFile& operator=(const PartialFile&) = delete;
-    ~PartialFile()
-    {
-        if (file_) std::fclose(file_);
-        if (!committed_) {
-            std::error_code ec;
-            std::filesystem::remove(tmp_, ec);
-        }
-    }
-
-    void write(const void* data, std::size_t n)
-    {
-        if (n != 0 && std::fwrite(data, 1, n, file_) != n)
-            fail(path_, "write failed: " + std::generic_category().message(errno));
-    }
-
-    void commit()
-    {
-        std::FILE* f = std::exchange(file_, nullptr);
-        if (std::fclose(f) != 0) fail(path_, "write failed: " + std::generic_category().message(errno));
-        std::error_code ec;
-        std::filesystem::rename(tmp_, path_, ec);
-        if (ec) fail(path_, "cannot rename the finished file into place: " + ec.message());
-        committed_ = true;
-    }
-
-private:
-    std::filesystem::path path_;
-    std::filesystem::path tmp_;
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
-};
-
-void write_gzip(PartialFile& out, const std::uint8_t* data, std::size_t n, const std::filesystem::path& path)
+void write_gzip(PartialFile<NrrdError>& out, const std::uint8_t* data, std::size_t n, const std::filesystem::path& path)
 {
     ZlibDeflate zs;
     // level 3: volumes are big, favour speed over the last few per cent; 15 + 16: gzip wrapper
@@ -508,7 +424,7 @@ void write_nrrd(const std::filesystem::path& path, const Volume& volume, bool gz
     for (const auto& [key, value] : volume.key_values) h += escape(key) + ":=" + escape(value) + "\n";
     h += "\n";
 
-    PartialFile out(path);
+    PartialFile<NrrdError> out(path);
     out.write(h.data(), h.size());
     if (gzip) write_gzip(out, volume.data.data(), volume.data.size(), path);
     else out.write(volume.data.data(), volume.data.size());

@@ -8,6 +8,8 @@
 
 #include <png.h>
 
+#include "io/partial_file.hpp"
+
 namespace echosim::io {
 namespace {
 
@@ -36,40 +38,27 @@ void write_png(const std::filesystem::path& path, const RgbaImage& image)
 {
     if (image.width == 0 || image.height == 0 || image.pixels.size() != std::size_t(image.width) * image.height * 4)
         fail(path, "refusing to write an empty or inconsistent image");
-    std::filesystem::path tmp = path;
-    tmp += ".partial";
+    PartialFile<std::runtime_error> out(path);
     std::string error;
-    {
-        File f(std::fopen(tmp.c_str(), "wb"));
-        if (!f) fail(path, "cannot open for writing: " + std::generic_category().message(errno));
-        png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, on_png_error, on_png_warning);
-        png_infop info = png ? png_create_info_struct(png) : nullptr;
-        if (!png || !info) {
-            png_destroy_write_struct(&png, &info);
-            fail(path, "libpng could not start");
-        }
-        if (setjmp(png_jmpbuf(png))) {
-            png_destroy_write_struct(&png, &info);
-            f.reset();
-            std::filesystem::remove(tmp);
-            fail(path, "libpng: " + error);
-        }
-        png_init_io(png, f.get());
-        png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
-                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_set_compression_level(png, 3);  // big frames: favour speed over the last few per cent
-        png_write_info(png, info);
-        for (std::uint32_t y = 0; y < image.height; ++y) png_write_row(png, image.at(0, y));
-        png_write_end(png, nullptr);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, on_png_error, on_png_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!png || !info) {
         png_destroy_write_struct(&png, &info);
-        if (std::fflush(f.get()) != 0) fail(path, "write failed: " + std::generic_category().message(errno));
+        fail(path, "libpng could not start");
     }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp);
-        fail(path, "cannot rename the finished file into place: " + ec.message());
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        fail(path, "libpng: " + error);  // `out` removes the partial file
     }
+    png_init_io(png, out.get());
+    png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_set_compression_level(png, 3);  // big frames: favour speed over the last few per cent
+    png_write_info(png, info);
+    for (std::uint32_t y = 0; y < image.height; ++y) png_write_row(png, image.at(0, y));
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    out.commit();
 }
 
 RgbaImage read_png(const std::filesystem::path& path)

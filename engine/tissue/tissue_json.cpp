@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/partial_file.hpp"
+
 namespace echosim::tissue {
 namespace {
 
@@ -97,18 +99,9 @@ void write_tissue_model(const std::filesystem::path& path, const TissueModel& m)
     for (const auto& s : m.springs) springs.push_back({s.i, s.j, s.rest_length});
     j["springs_i_j_rest_mm"] = springs;
 
-    std::filesystem::path tmp = path;
-    tmp += ".partial";
-    {
-        std::ofstream out(tmp);
-        if (!out) throw ModelFileError(path.string() + ": cannot open for writing");
-        out << j.dump(1) << "\n";
-        if (!out.flush()) {
-            std::filesystem::remove(tmp);
-            throw ModelFileError(path.string() + ": write failed");
-        }
-    }
-    std::filesystem::rename(tmp, path);
+    io::PartialFile<ModelFileError> out(path);
+    out.write(j.dump(1) + "\n");
+    out.commit();
 }
 
 TissueModel read_tissue_model(const std::filesystem::path& path)
