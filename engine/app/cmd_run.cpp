@@ -17,10 +17,13 @@ namespace {
 
 // What the mouse and keyboard did since the last frame; filled by GLFW callbacks on the main thread.
 struct Controls {
-    bool dragging = false;
+    bool dragging = false;        // left button: orbit the camera
+    bool moving_probe = false;    // right button: slide the probe over the patch
     double last_x = 0, last_y = 0;
-    double d_x = 0, d_y = 0;
-    double scroll = 0;
+    double d_x = 0, d_y = 0;      // camera drag [px]
+    double probe_x = 0, probe_y = 0;  // probe drag [px]
+    double scroll = 0;            // zoom, or with Shift the probe's press
+    bool shift = false;
     bool toggle_fullscreen = false;
 };
 
@@ -30,21 +33,23 @@ void install_callbacks(GLFWwindow* w, Controls* c)
 {
     glfwSetWindowUserPointer(w, c);
     glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
-        if (button != GLFW_MOUSE_BUTTON_LEFT) return;
         Controls& k = controls_of(win);
-        k.dragging = action == GLFW_PRESS;
+        if (button == GLFW_MOUSE_BUTTON_LEFT) k.dragging = action == GLFW_PRESS;
+        if (button == GLFW_MOUSE_BUTTON_RIGHT) k.moving_probe = action == GLFW_PRESS;
         glfwGetCursorPos(win, &k.last_x, &k.last_y);
     });
     glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
         Controls& k = controls_of(win);
-        if (k.dragging) {
-            k.d_x += x - k.last_x;
-            k.d_y += y - k.last_y;
-        }
+        if (k.dragging) k.d_x += x - k.last_x, k.d_y += y - k.last_y;
+        if (k.moving_probe) k.probe_x += x - k.last_x, k.probe_y += y - k.last_y;
         k.last_x = x;
         k.last_y = y;
     });
-    glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) { controls_of(win).scroll += dy; });
+    glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) {
+        Controls& k = controls_of(win);
+        k.shift = glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+        k.scroll += dy;
+    });
     glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int) {
         if (action != GLFW_PRESS) return;
         if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(win, GLFW_TRUE);
@@ -103,8 +108,8 @@ int run_window(const RunArgs& args)
         const PatchDeformer deformer(scene.leg, model);
         physics::PhysicsRunner physics(model, physics::PhysicsOptions{});
         physics.start();
-        std::printf("echosim run: %s, %ux%u; drag to orbit, scroll to zoom, arrows slide the probe, W/S press it in and out, "
-                    "F11 fullscreen, Esc quits\n",
+        std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
+                    "W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
                     ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
 
         Controls controls;
@@ -123,7 +128,12 @@ int run_window(const RunArgs& args)
             last = now;
 
             scene.camera.orbit(float(controls.d_x) * -0.005f, float(controls.d_y) * 0.005f);
-            scene.camera.zoom(float(std::pow(0.9, controls.scroll)));
+            // the wheel zooms; with Shift it presses the probe in and out, 1 mm a notch
+            double press_scroll = 0;
+            if (controls.shift)
+                press_scroll = controls.scroll;
+            else
+                scene.camera.zoom(float(std::pow(0.9, controls.scroll)));
             controls.d_x = controls.d_y = controls.scroll = 0;
             if (controls.toggle_fullscreen) window.set_fullscreen(!window.fullscreen());
             controls.toggle_fullscreen = false;
@@ -133,11 +143,16 @@ int run_window(const RunArgs& args)
             const float step = 0.4f * dt;
             u += step * float((glfwGetKey(w, GLFW_KEY_DOWN) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_UP) == GLFW_PRESS));
             v += step * float((glfwGetKey(w, GLFW_KEY_RIGHT) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_LEFT) == GLFW_PRESS));
+            // right-drag: down the screen moves the probe down the thigh, across moves it around
+            u += 0.002f * float(controls.probe_y);
+            v += 0.002f * float(controls.probe_x);
+            controls.probe_x = controls.probe_y = 0;
             u = std::clamp(u, 0.0f, 1.0f);
             v = std::clamp(v, 0.0f, 1.0f);
             // W/S press the probe in and out at 15 mm/s (the smoke test presses by script)
             const double before = press;
             press += 15.0 * dt * double((glfwGetKey(w, GLFW_KEY_W) == GLFW_PRESS) - (glfwGetKey(w, GLFW_KEY_S) == GLFW_PRESS));
+            press += press_scroll;
             if (args.exercise) press = 12.0 * std::min(1.0, loop / 40.0);
             press = std::clamp(press, 0.0, 25.0);
             const Pose rest = scene.leg.probe_rest_pose(u, v);
