@@ -92,29 +92,25 @@ double Phantom::depth_at(const glm::dvec3& p) const
     return skin_radius(s, std::atan2(d.y, d.x)) - glm::length(d);
 }
 
-VesselSection Phantom::artery(double z) const
+VesselSection Phantom::open_vessel(double z, double theta_deg, double depth, double radius, double wall) const
 {
-    // runs from anterior at the groin towards medial and deeper down the thigh
+    // the femoral vessels run from anterior at the groin towards medial and deeper down the thigh
     const double along = std::clamp(-z / 400.0, 0.0, 1.0);
     VesselSection v;
-    v.centre = at_depth(z, (298.0 + 14.0 * along) * kDeg, 24.0 + 10.0 * along);
-    v.lumen_radius = 3.75;
-    v.wall = 0.8;
+    v.centre = at_depth(z, (theta_deg + 14.0 * along) * kDeg, depth + 10.0 * along);
+    v.lumen_radius = radius;
+    v.wall = wall;
     v.thrombus_radius = 0;
     v.thrombus_centre = v.centre;
     return v;
 }
 
+VesselSection Phantom::artery(double z) const { return open_vessel(z, 298.0, 24.0, 3.75, 0.8); }
+
 VesselSection Phantom::vein(double z) const
 {
     // beside the artery, medial to it and partly below
-    const double along = std::clamp(-z / 400.0, 0.0, 1.0);
-    VesselSection v;
-    v.centre = at_depth(z, (309.0 + 14.0 * along) * kDeg, 31.0 + 10.0 * along);
-    v.wall = 0.6;
-    v.lumen_radius = 5.5;
-    v.thrombus_radius = 0;
-    v.thrombus_centre = v.centre;
+    VesselSection v = open_vessel(z, 309.0, 31.0, 5.5, 0.6);
     // the thrombus occupies the femoral vein from 40 mm below the groin down
     const double in_clot = std::clamp((-z - 40.0) / 10.0, 0.0, 1.0);
     if (case_ == Case::dvt_acute) {
@@ -132,6 +128,7 @@ VesselSection Phantom::vein(double z) const
 
 VesselSection Phantom::saphenous(double z) const
 {
+    // superficial, in the fat, medially; it keeps its course (no drift down the thigh)
     VesselSection v;
     v.centre = at_depth(z, 332.0 * kDeg, 6.5);
     v.lumen_radius = 2.0;

@@ -75,6 +75,7 @@ private:
     Section section(double z) const;  // the limb's cross-section at level z
     static double skin_radius(const Section& s, double theta);
     glm::dvec3 at_depth(double z, double theta, double depth) const;
+    VesselSection open_vessel(double z, double theta_deg, double depth, double radius, double wall) const;
 
     Case case_;
     double z_top_, z_step_;

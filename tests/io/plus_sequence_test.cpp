@@ -12,35 +12,18 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <gtest/gtest.h>
+
+#include "test_files.hpp"
 #include <zlib.h>
 
 namespace echosim::io {
 namespace {
 
-std::filesystem::path temp(const std::string& name)
-{
-    return std::filesystem::temp_directory_path() / ("echosim_plus_test_" + std::to_string(::getpid()) + "_" + name);
-}
+using test::read_bytes;
+using test::with;
+using test::write_bytes;
 
-std::string read_bytes(const std::filesystem::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::filesystem::path& path, const std::string& bytes)
-{
-    std::ofstream(path, std::ios::binary) << bytes;
-}
-
-// `text` with its one occurrence of `from` replaced by `to`.
-std::string with(std::string text, const std::string& from, const std::string& to)
-{
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the test file";
-    if (at != std::string::npos) text.replace(at, from.size(), to);
-    return text;
-}
+std::filesystem::path temp(const std::string& name) { return test::temp_path("plus_test", name); }
 
 // `text` with the whole line starting with `start` replaced by `line` (empty: removed).
 std::string with_line(std::string text, const std::string& start, const std::string& line)
