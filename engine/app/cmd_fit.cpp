@@ -19,13 +19,7 @@ int run_fit(const FitArgs& args)
         std::fprintf(stderr, "echosim fit: %s\n", e.what());
         return kExitBadInput;
     }
-    for (const auto& [path, what] : {std::pair{args.out, "--out"}}) {
-        const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-        if (!std::filesystem::is_directory(parent)) {
-            std::fprintf(stderr, "echosim fit: %s %s: folder %s does not exist\n", what, path.c_str(), parent.c_str());
-            return kExitBadInput;
-        }
-    }
+    if (!output_folder_exists("fit", "--out", args.out)) return kExitBadInput;
 
     fit::FitOptions options;
     options.method = args.method == "steepest" ? fit::Method::steepest_descent : fit::Method::levenberg_marquardt;

@@ -8,11 +8,7 @@ namespace echosim::app {
 
 int run_measure(const MeasureArgs& args)
 {
-    const auto parent = args.out.has_parent_path() ? args.out.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(parent)) {
-        std::fprintf(stderr, "echosim measure: --out %s: folder %s does not exist\n", args.out.c_str(), parent.c_str());
-        return kExitBadInput;
-    }
+    if (!output_folder_exists("measure", "--out", args.out)) return kExitBadInput;
     const scene::LegModel leg;
     fit::CampaignOptions options;
     options.seed = args.seed;

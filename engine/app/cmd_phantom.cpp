@@ -28,14 +28,9 @@ int run_phantom(const PhantomArgs& args)
         std::fprintf(stderr, "echosim phantom: --case: %s\n", e.what());
         return kExitBadInput;
     }
-    for (const auto& p : {args.out, args.labels}) {
-        if (p.empty()) continue;
-        const auto parent = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-        if (!std::filesystem::is_directory(parent)) {
-            std::fprintf(stderr, "echosim phantom: %s: folder %s does not exist\n", p.c_str(), parent.c_str());
-            return kExitBadInput;
-        }
-    }
+    if (!output_folder_exists("phantom", "--out", args.out) ||
+        (!args.labels.empty() && !output_folder_exists("phantom", "--labels", args.labels)))
+        return kExitBadInput;
     const scene::LegModel leg;
     const echo::Phantom phantom(leg, which);
     const echo::PhantomMedium medium(phantom);

@@ -19,6 +19,7 @@ std::filesystem::path label_sweep_path(const std::filesystem::path& sweep);  // 
 int run_reconstruct(const ReconstructArgs& args)
 {
     using clock = std::chrono::steady_clock;
+    if (!output_folder_exists("reconstruct", "--out", args.out)) return kExitBadInput;
     io::Sweep sweep, labels;
     try {
         sweep = io::read_plus_sequence(args.sweep);

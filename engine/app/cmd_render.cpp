@@ -48,11 +48,7 @@ void apply_camera(const std::string& text, DefaultScene& scene)
 int run_render(const RenderArgs& args)
 {
     // check what the user gave before spending time on Vulkan
-    const auto parent = args.out.has_parent_path() ? args.out.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(parent)) {
-        std::fprintf(stderr, "echosim render: --out %s: folder %s does not exist\n", args.out.c_str(), parent.c_str());
-        return kExitBadInput;
-    }
+    if (!output_folder_exists("render", "--out", args.out)) return kExitBadInput;
     DefaultScene scene;
     if (!args.pose.empty()) {
         try {

@@ -15,6 +15,10 @@ inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitValidation = 3;
 
+// Whether the folder `path` is to be written into exists; if not, says so on stderr, naming the
+// command and the option, so a command can refuse before it spends time on work it cannot save.
+bool output_folder_exists(const char* command, const char* option, const std::filesystem::path& path);
+
 struct GpuArgs {
     std::string gpu;          // --gpu NAME, else ECHOSIM_GPU
     bool validation = false;  // --validation, else ECHOSIM_VALIDATION or a debug build
