@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <ceres/ceres.h>
+#include <glm/geometric.hpp>
 #include <glog/logging.h>
 
 #include "tissue/nonlinear_spring.hpp"
@@ -210,9 +211,15 @@ FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
     result.params.lambda = std::exp(log_lambda);
     // mu for the wanted damping ratio of one node's mass on its rest stiffness (units: N/mm is
     // 1000 kg/s^2, so sqrt(k m) in kg/s is N s/m, and 1e-3 of that is N s/mm)
-    double mean_area = 0;
-    for (const auto& sp : mesh.springs) mean_area += sp.rest_length * sp.rest_length;
-    mean_area /= double(mesh.springs.size());
+    // a node's share of the skin: the grid's cells' area over its nodes
+    double area = 0;
+    for (int r = 0; r + 1 < SampleGrid::rows; ++r)
+        for (int c = 0; c + 1 < SampleGrid::cols; ++c) {
+            const glm::dvec3& p = mesh.position[std::size_t(SampleGrid::index(r, c))];
+            area += glm::length(glm::cross(mesh.position[std::size_t(SampleGrid::index(r + 1, c))] - p,
+                                           mesh.position[std::size_t(SampleGrid::index(r, c + 1))] - p));
+        }
+    const double mean_area = area / SampleGrid::count;
     double mean_k = 0;
     for (double b : result.params.b) mean_k += 1.0 / b;
     mean_k /= SampleGrid::count;
