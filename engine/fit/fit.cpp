@@ -52,8 +52,10 @@ struct InteractionResidual {
     }
 };
 
-void configure(ceres::Solver::Options& o, const FitOptions& options)
+// Solves one step's problem with the chosen method; Ceres' failures become exceptions naming the step.
+void solve(ceres::Problem& problem, const FitOptions& options, const char* step, int& iterations, double& cost)
 {
+    ceres::Solver::Options o;
     o.max_num_iterations = options.max_iterations;
     o.num_threads = 1;
     o.logging_type = ceres::SILENT;
@@ -69,6 +71,23 @@ void configure(ceres::Solver::Options& o, const FitOptions& options)
         o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
         o.linear_solver_type = ceres::DENSE_QR;
     }
+    ceres::Solver::Summary summary;
+    ceres::Solve(o, &problem, &summary);
+    if (summary.termination_type == ceres::FAILURE) throw std::runtime_error(std::string("tissue fit, ") + step + ": " + summary.message);
+    iterations = int(summary.iterations.size());
+    cost = summary.final_cost;
+}
+
+// The model force of every prepared sample (infeasible ones: +infinity), in the set's order.
+std::vector<double> predict(const std::vector<InteractionSample>& prepared, std::size_t samples, const tissue::SampleParameters& params)
+{
+    std::vector<double> out(samples);
+    auto ab = [&](int node, int which) { return which == 0 ? params.a[std::size_t(node)] : params.b[std::size_t(node)]; };
+    for (const auto& s : prepared) {
+        double f = 0;
+        out[s.sample] = interaction_force(s, ab, params.lambda, f) ? f : std::numeric_limits<double>::infinity();
+    }
+    return out;
 }
 
 // A feasible start for one point's spring from its indenter samples: u = b F - a u F is linear in
@@ -113,14 +132,7 @@ ErrorStats error_stats(const MeasurementSet& set, const std::vector<double>& pre
 
 std::vector<double> predict(const MeasurementSet& set, const tissue::SampleParameters& params)
 {
-    const auto prepared = prepare_interaction(sample_mesh(set), set);
-    std::vector<double> out(set.samples.size());
-    auto ab = [&](int node, int which) { return which == 0 ? params.a[std::size_t(node)] : params.b[std::size_t(node)]; };
-    for (const auto& s : prepared) {
-        double f = 0;
-        out[s.sample] = interaction_force(s, ab, params.lambda, f) ? f : std::numeric_limits<double>::infinity();
-    }
-    return out;
+    return predict(prepare_interaction(sample_mesh(set), set), set.samples.size(), params);
 }
 
 FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
@@ -152,14 +164,7 @@ FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
                 problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SpringResidual, 1, 2>(new SpringResidual{u, f}),
                                          new ceres::HuberLoss(options.huber_N), log_ab[std::size_t(p)].data());
         }
-        ceres::Solver::Options o;
-        configure(o, options);
-        ceres::Solver::Summary summary;
-        ceres::Solve(o, &problem, &summary);
-        if (summary.termination_type == ceres::FAILURE)
-            throw std::runtime_error("tissue fit, step 1: " + summary.message);
-        result.step1_iterations = int(summary.iterations.size());
-        result.step1_cost = summary.final_cost;
+        solve(problem, options, "step 1", result.step1_iterations, result.step1_cost);
     }
     const auto t1 = Clock::now();
 
@@ -191,14 +196,7 @@ FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
             cost->SetNumResiduals(1);
             problem.AddResidualBlock(cost, new ceres::HuberLoss(options.huber_N), blocks);
         }
-        ceres::Solver::Options o;
-        configure(o, options);
-        ceres::Solver::Summary summary;
-        ceres::Solve(o, &problem, &summary);
-        if (summary.termination_type == ceres::FAILURE)
-            throw std::runtime_error("tissue fit, step 2: " + summary.message);
-        result.step2_iterations = int(summary.iterations.size());
-        result.step2_cost = summary.final_cost;
+        solve(problem, options, "step 2", result.step2_iterations, result.step2_cost);
     }
     const auto t2 = Clock::now();
     result.step1_seconds = std::chrono::duration<double>(t1 - t0).count();
@@ -226,7 +224,7 @@ FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
     const double node_mass = mean_area * tissue::kSurfaceMassPerArea;
     result.params.mu = 2.0 * options.damping_ratio * std::sqrt(1000.0 * (mean_k + 8.0 * result.params.lambda) * node_mass) * 1e-3;
 
-    result.predicted = predict(set, result.params);
+    result.predicted = predict(prepared, set.samples.size(), result.params);
     const ProbeKind indenter = ProbeKind::indenter, probe = ProbeKind::probe;
     result.all = error_stats(set, result.predicted);
     result.indenter = error_stats(set, result.predicted, &indenter);
