@@ -1,6 +1,6 @@
 #include <cstdio>
 
-#include <glm/common.hpp>
+#include <glm/vec3.hpp>
 
 #include "app/commands.hpp"
 #include "echo/phantom.hpp"
@@ -55,9 +55,7 @@ int run_phantom(const PhantomArgs& args)
     if (!args.labels.empty()) {
         // the phantom's own label map over the box the sweep spans, aligned with it as the
         // reconstruction's map is
-        std::vector<glm::dmat4> transforms;
-        for (const auto& f : sweep.sweep.frames) transforms.push_back(f.image_to_reference);
-        const echo::SweepBox box = echo::sweep_box(transforms, sweep.sweep.width, sweep.sweep.height);
+        const echo::SweepBox box = echo::sweep_box(sweep.sweep);
         const double voxel = 0.3;
         io::Volume v = io::make_volume({std::size_t((box.hi.x - box.lo.x) / voxel) + 1, std::size_t((box.hi.y - box.lo.y) / voxel) + 1,
                                         std::size_t((box.hi.z - box.lo.z) / voxel) + 1},

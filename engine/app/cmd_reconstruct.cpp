@@ -1,10 +1,10 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
-#include <vector>
 
-#include <glm/common.hpp>
+#include <glm/vec3.hpp>
 
 #include "app/commands.hpp"
 #include "echo/phantom.hpp"
@@ -30,15 +30,12 @@ int run_reconstruct(const ReconstructArgs& args)
     }
     const bool with_labels = labels.frames.size() == sweep.frames.size() && labels.width == sweep.width && labels.height == sweep.height;
 
-    std::vector<glm::dmat4> transforms;
-    for (const auto& f : sweep.frames)
-        if (f.valid) transforms.push_back(f.image_to_reference);
-    const std::size_t valid = transforms.size();
+    const auto valid = std::size_t(std::count_if(sweep.frames.begin(), sweep.frames.end(), [](const auto& f) { return f.valid; }));
     if (valid == 0) {
         std::fprintf(stderr, "echosim reconstruct: %s: no frame has a valid transform\n", args.sweep.c_str());
         return kExitBadInput;
     }
-    const echo::SweepBox box = echo::sweep_box(transforms, sweep.width, sweep.height);
+    const echo::SweepBox box = echo::sweep_box(sweep);
     echo::ReconstructOptions options;
     options.voxel_mm = args.voxel_mm;
     options.splat = args.splat == "nearest" ? echo::Splat::nearest : echo::Splat::trilinear;

@@ -53,6 +53,14 @@ SweepBox sweep_box(std::span<const glm::dmat4> frames, std::uint32_t width, std:
     return box;
 }
 
+SweepBox sweep_box(const io::Sweep& sweep)
+{
+    std::vector<glm::dmat4> transforms;
+    for (const auto& f : sweep.frames)
+        if (f.valid) transforms.push_back(f.image_to_reference);
+    return sweep_box(transforms, sweep.width, sweep.height);
+}
+
 Reconstructor::Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const ReconstructOptions& options, const glm::dmat3& axes)
     : options_(options), axes_(axes), lo_(lo)
 {

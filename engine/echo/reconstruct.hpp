@@ -19,6 +19,7 @@
 #include <glm/vec3.hpp>
 
 #include "io/nrrd.hpp"
+#include "io/plus_sequence.hpp"
 
 namespace echosim::echo {
 
@@ -43,6 +44,8 @@ struct SweepBox {
     glm::dvec3 lo{0.0}, hi{0.0};
 };
 SweepBox sweep_box(std::span<const glm::dmat4> image_to_world, std::uint32_t width, std::uint32_t height);
+// The same for a tracked sweep's frames whose transforms are valid.
+SweepBox sweep_box(const io::Sweep& sweep);
 
 class Reconstructor {
 public:

@@ -113,9 +113,7 @@ protected:
         spec_ = o.spec;
         const PhantomMedium medium(*phantom_);
         const TrackedSweep sweep = make_sweep(*leg_, medium, o);
-        std::vector<glm::dmat4> transforms;
-        for (const auto& f : sweep.sweep.frames) transforms.push_back(f.image_to_reference);
-        const SweepBox box = sweep_box(transforms, sweep.sweep.width, sweep.sweep.height);
+        const SweepBox box = sweep_box(sweep.sweep);
         ReconstructOptions ro;
         ro.voxel_mm = 0.3;
         Reconstructor rec(box.lo, box.hi, ro, box.axes);
