@@ -70,7 +70,7 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
 
     // 4: guard
     if (exploded(options, s)) {
-        reset_to_rest(model, s);
+        reset_to_rest(s);
         ++s.resets;
     }
 }

@@ -31,13 +31,12 @@ TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& o
         lin.lateral_damping = 2.0 * options.normal_damping_ratio * std::sqrt(m * lin.lateral_stiffness);
     }
     s.contacts = contact::make_contact_set(scene.surface);
-    reset_to_rest(model, s);
+    reset_to_rest(s);
     return s;
 }
 
-void reset_to_rest(const tissue::TissueModel& model, TissueState& s)
+void reset_to_rest(TissueState& s)
 {
-    (void)model;
     s.x = s.rest;
     s.v.setZero();
     s.dv.setZero();

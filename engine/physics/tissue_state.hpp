@@ -71,6 +71,6 @@ struct Scene;
 TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options, const Scene& scene);
 
 // Back to rest: positions, velocities and time; counters kept.
-void reset_to_rest(const tissue::TissueModel& model, TissueState& state);
+void reset_to_rest(TissueState& state);
 
 }  // namespace echosim::physics
