@@ -106,6 +106,7 @@ int run_bench(const BenchArgs& args)
     SuiteOptions options{context_options(args.gpu), args.min_time_s};
     nlohmann::json report = nlohmann::json::array();
     int status = kExitOk;
+    std::size_t ran = 0;
     for (const Suite* suite : chosen) {
         std::string gpu_name = "none";
         if (suite->uses_gpu) {
@@ -117,13 +118,17 @@ int run_bench(const BenchArgs& args)
         benchmark::ClearRegisteredBenchmarks();
         std::shared_ptr<void> keep = suite->register_benchmarks(options);
         Collector collector;
-        benchmark::RunSpecifiedBenchmarks(&collector);
+        ran += benchmark::RunSpecifiedBenchmarks(&collector, args.filter);
         keep.reset();
         for (const auto& e : collector.errors) {
             std::fprintf(stderr, "echosim bench: %s\n", e.c_str());
             status = kExitFailure;
         }
         report.push_back({{"bench", suite->name}, {"machine", machine(gpu_name)}, {"results", collector.rows}});
+    }
+    if (ran == 0) {
+        std::fprintf(stderr, "echosim bench: no benchmark row matches --filter '%s'\n", args.filter.c_str());
+        return kExitBadInput;
     }
     if (!args.json.empty()) {
         std::ofstream out(args.json);

@@ -87,6 +87,7 @@ struct BenchArgs {
     std::vector<std::string> names;  // empty: all
     std::filesystem::path json;
     double min_time_s = 1.0;
+    std::string filter = ".";  // Google Benchmark's filter over the row names
 };
 int run_bench(const BenchArgs& args);
 

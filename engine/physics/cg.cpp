@@ -2,49 +2,101 @@
 
 #include <cmath>
 
-#include "physics/system_product.hpp"
+#include "core/simd.hpp"
 
 namespace echosim::physics {
+namespace {
 
-CgResult conjugate_gradient(const tissue::TissueModel& model, const PhysicsOptions& options, const contact::PenaltyLaw& law,
-                            TissueState& s, double h)
+// The fused pass: dv += alpha d, r -= alpha Ap, z = P r (P the per-node inverse blocks); returns
+// r . z, and r . r through `rr`.
+ECHOSIM_SIMD_CLONES double update_and_precondition(std::size_t n, const GridSystem& g, float alpha, CgVectors& v, double& rr)
+{
+    const float* __restrict d = v.direction.data();
+    const float* __restrict q = v.product.data();
+    float* __restrict x = v.dv.data();
+    float* __restrict r = v.residual.data();
+    float* __restrict z = v.z.data();
+    const float* __restrict p = g.inverse.data();
+    double rz = 0, sum_rr = 0;
+#pragma omp simd reduction(+ : rz, sum_rr)
+    for (std::size_t i = 0; i < n; ++i) {
+        x[i] += alpha * d[i];
+        x[n + i] += alpha * d[n + i];
+        x[2 * n + i] += alpha * d[2 * n + i];
+        const float rx = r[i] - alpha * q[i], ry = r[n + i] - alpha * q[n + i], rzz = r[2 * n + i] - alpha * q[2 * n + i];
+        r[i] = rx;
+        r[n + i] = ry;
+        r[2 * n + i] = rzz;
+        const float zx = p[i] * rx + p[3 * n + i] * ry + p[4 * n + i] * rzz;
+        const float zy = p[3 * n + i] * rx + p[n + i] * ry + p[5 * n + i] * rzz;
+        const float zz = p[4 * n + i] * rx + p[5 * n + i] * ry + p[2 * n + i] * rzz;
+        z[i] = zx;
+        z[n + i] = zy;
+        z[2 * n + i] = zz;
+        rz += double(rx * zx + ry * zy + rzz * zz);
+        sum_rr += double(rx * rx + ry * ry + rzz * rzz);
+    }
+    rr = sum_rr;
+    return rz;
+}
+
+ECHOSIM_SIMD_CLONES double dot(const std::vector<float>& a, const std::vector<float>& b)
+{
+    const float* __restrict pa = a.data();
+    const float* __restrict pb = b.data();
+    double sum = 0;
+#pragma omp simd reduction(+ : sum)
+    for (std::size_t i = 0; i < a.size(); ++i) sum += double(pa[i] * pb[i]);
+    return sum;
+}
+
+// d = z + beta d
+ECHOSIM_SIMD_CLONES void next_direction(const std::vector<float>& z, float beta, std::vector<float>& d)
+{
+    const float* __restrict pz = z.data();
+    float* __restrict pd = d.data();
+    for (std::size_t i = 0; i < d.size(); ++i) pd[i] = pz[i] + beta * pd[i];
+}
+
+}  // namespace
+
+CgVectors make_cg_vectors(std::size_t nodes, int cols)
+{
+    CgVectors v;
+    for (std::vector<float>* p : {&v.rhs, &v.dv, &v.residual, &v.z, &v.direction, &v.product}) p->assign(3 * nodes, 0.0f);
+    v.rows = RowBuffers<3>(cols);
+    return v;
+}
+
+CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& g, CgVectors& v)
 {
     CgResult out;
-    prepare_system(model, s, h);
-    system_block_inverses(model, law, s, h, s.preconditioner);
-    auto precondition = [&] {
-        for (std::size_t i = 0; i < s.preconditioner.size(); ++i)
-            s.z.segment<3>(3 * Eigen::Index(i)) = s.preconditioner[i] * s.residual.segment<3>(3 * Eigen::Index(i));
-    };
+    const std::size_t size = v.rhs.size();
 
-    // r = b - A x0, from the warm start
-    system_product(model, law, s, h, s.dv, s.product);
-    s.residual = s.rhs - s.product;
-    for (std::size_t i = 0; i < s.fixed.size(); ++i)
-        if (s.fixed[i]) s.residual.segment<3>(3 * Eigen::Index(i)).setZero();
-    const double rhs_norm = std::max(s.rhs.norm(), 1e-30);
-    precondition();
-    s.direction = s.z;
-    double rz = s.residual.dot(s.z);
+    // r = b - A x0 from the warm start; z = P r, the first direction
+    system_product(grid, g, v.dv.data(), v.product.data(), v.rows);
+    for (std::size_t i = 0; i < size; ++i) v.residual[i] = v.rhs[i] - v.product[i];
+    std::fill(v.direction.begin(), v.direction.end(), 0.0f);
+    double rr = 0;
+    double rz = update_and_precondition(grid.n, g, 0.0f, v, rr);
+    v.direction = v.z;
+    const double rhs_norm = std::max(std::sqrt(dot(v.rhs, v.rhs)), 1e-30);
+
     for (; out.iterations < options.cg_max_iterations; ++out.iterations) {
-        out.relative_residual = s.residual.norm() / rhs_norm;
+        out.relative_residual = std::sqrt(rr) / rhs_norm;
         if (!std::isfinite(out.relative_residual)) {
             out.finite = false;
             return out;
         }
         if (out.relative_residual <= options.cg_tolerance) break;
-        system_product(model, law, s, h, s.direction, s.product);
-        const double pap = s.direction.dot(s.product);
-        if (!(pap > 0)) break;  // the matrix is SPD: only round-off gets here, at convergence
-        const double alpha = rz / pap;
-        s.dv += alpha * s.direction;
-        s.residual -= alpha * s.product;
-        precondition();
-        const double rz_next = s.residual.dot(s.z);
-        s.direction = s.z + (rz_next / rz) * s.direction;
+        const double pap = system_product(grid, g, v.direction.data(), v.product.data(), v.rows);
+        if (!(pap > 0)) break;  // A is SPD: only round-off gets here, at convergence
+        const double rz_next = update_and_precondition(grid.n, g, float(rz / pap), v, rr);
+        const float beta = float(rz_next / rz);
         rz = rz_next;
+        next_direction(v.z, beta, v.direction);
     }
-    out.relative_residual = s.residual.norm() / rhs_norm;
+    out.relative_residual = std::sqrt(rr) / rhs_norm;
     return out;
 }
 

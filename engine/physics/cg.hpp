@@ -1,13 +1,23 @@
-// Stage 3: preconditioned conjugate gradient (block Jacobi) on the implicit step's system A dv = rhs,
-// matrix-free through system_product, warm-started from the previous step's dv. Uses the state's
-// scratch vectors; allocates nothing.
+// Stage 3: preconditioned conjugate gradient (block Jacobi) on the implicit step's system
+// A dv = rhs, matrix-free through the grid system's product, warm-started from the previous step's
+// dv. Vectors are plane vectors of floats (grid_system.hpp), sized once; a solve allocates nothing.
+// Each iteration is two passes over memory: the product (with p . Ap), and one fused pass that
+// updates dv and the residual, applies the preconditioner and takes both dot products.
 #pragma once
 
+#include <vector>
+
+#include "physics/grid_system.hpp"
 #include "physics/physics_options.hpp"
-#include "physics/tissue_state.hpp"
-#include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
+
+struct CgVectors {
+    std::vector<float> rhs, dv, residual, z, direction, product;  // 3n floats each, as planes
+    RowBuffers<3> rows;
+};
+
+CgVectors make_cg_vectors(std::size_t nodes, int cols);
 
 struct CgResult {
     int iterations = 0;
@@ -15,8 +25,7 @@ struct CgResult {
     bool finite = true;
 };
 
-// Solves for state.dv from state.rhs (fixed nodes' entries are zero in both).
-CgResult conjugate_gradient(const tissue::TissueModel& model, const PhysicsOptions& options, const contact::PenaltyLaw& law,
-                            TissueState& state, double h);
+// Solves A dv = rhs for vectors.dv, from its value on entry (rhs is zero at fixed nodes).
+CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& system, CgVectors& vectors);
 
 }  // namespace echosim::physics

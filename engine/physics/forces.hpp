@@ -4,7 +4,8 @@
 //                      and a linear shear spring across it (see PhysicsOptions)
 //   gravity            m g
 //   external           whatever the caller put in state.external (tests, haptic reaction)
-// The stiffness blocks are kept positive semi-definite, as conjugate gradient needs: the
+// Alongside, K v (the stiffness blocks times the velocities) for the implicit step's right-hand
+// side, while each spring's linearisation is at hand. The stiffness blocks are kept positive semi-definite, as conjugate gradient needs: the
 // transverse term of a compressed surface spring (which would buckle it) is dropped (Choi and Ko
 // 2002).
 #pragma once

@@ -4,7 +4,7 @@
 
 #include "physics/cg.hpp"
 #include "physics/forces.hpp"
-#include "physics/system_product.hpp"
+#include "physics/grid_system.hpp"
 
 namespace echosim::physics {
 namespace {
@@ -49,15 +49,16 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
 
     // 3: integrate
     if (options.integrator == Integrator::implicit_euler) {
-        stiffness_product(model, scene.penalty, s, s.v, s.product);
-        s.rhs = h * (s.force - h * s.product);
+        contact::add_contact_product(s.contacts, scene.penalty, 0.0, 1.0, s.v, s.stiffness_v);
+        s.rhs = h * (s.force - h * s.stiffness_v);
         zero_fixed(s, s.rhs);
-        zero_fixed(s, s.dv);
-        const CgResult cg = conjugate_gradient(model, options, scene.penalty, s, h);
+        prepare_system(model, scene.penalty, s, h, s.system);
+        to_planes(s.rhs.data(), model.node_count(), s.cg.rhs.data());
+        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg);
         s.last.cg_iterations = cg.iterations;
         s.last.cg_residual = cg.relative_residual;
-        if (!cg.finite) s.dv.setConstant(std::nan(""));  // the guard below resets and counts it
-        s.v += s.dv;
+        if (!cg.finite) s.v.setConstant(std::nan(""));  // the guard below resets and counts it
+        else add_planes_to(s.cg.dv.data(), model.node_count(), s.v.data());
     } else {
         for (std::size_t i = 0; i < model.node_count(); ++i)
             s.v.segment<3>(3 * Eigen::Index(i)) += h * s.inv_mass_scaled[i] * s.force.segment<3>(3 * Eigen::Index(i));

@@ -11,19 +11,14 @@
 #include <Eigen/Core>
 
 #include "contact/probe_contact.hpp"
+#include "physics/cg.hpp"
+#include "physics/grid_layout.hpp"
+#include "physics/grid_system.hpp"
+#include "physics/row_sweep.hpp"
 #include "physics/physics_options.hpp"
 #include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
-
-// Per-spring linearisation, cached by the force stage for the stiffness product:
-// K_s p = lambda (beta p + (1 - beta) (e . p) e),  D_s p = mu (e . p) e.
-struct SpringLinearisation {
-    Eigen::Vector3d e = Eigen::Vector3d::Zero();  // unit direction i -> j
-    double beta = 0;                              // max(0, 1 - rest / length)
-    // the system matrix's block h^2 K_s + h D_s = iso I + along e e^T, for the current step
-    double iso = 0, along = 0;
-};
 
 // Per-node support by the tissue column: the non-linear spring along the rest normal n (the paper's
 // eq. 1) and a linear shear spring across it. Blocks: stiffness (k n n^T + k_t (I - n n^T)),
@@ -34,8 +29,6 @@ struct NormalLinearisation {
     double damping = 0;            // d [N s/mm]
     double lateral_stiffness = 0;  // k_t [N/mm]
     double lateral_damping = 0;    // d_t [N s/mm]
-    // the system matrix's block for the current step: iso I + along n n^T
-    double iso = 0, along = 0;
 };
 
 struct StepStats {
@@ -55,10 +48,21 @@ struct TissueState {
     contact::ProbeState probe;             // where the probe is, set by the caller before a step
     contact::ContactSet contacts;          // filled by the contact stage
 
+    GridLayout grid;           // the model's springs as the grid's (grid_layout.hpp)
+    SpringPlanes spring_rest;  // per spring: rest length [mm], and 1 where the spring exists
+
     // scratch of the solver stages (sized once)
-    Eigen::VectorXd force, rhs, dv, residual, direction, product, z;
-    std::vector<Eigen::Matrix3d> preconditioner;  // block-Jacobi: inverse 3 x 3 diagonal blocks
-    std::vector<SpringLinearisation> springs;
+    Eigen::VectorXd force;
+    Eigen::VectorXd stiffness_v;  // K v, for the implicit step's right-hand side h (f - h K v)
+    Eigen::VectorXd rhs;
+    GridSystem system;  // A = M + h D + h^2 K for the step, in the grid's stencil form
+    CgVectors cg;       // the solver's vectors; cg.dv is the last step's dv (the warm start)
+    std::vector<double> x_planes, v_planes;  // x and v as plane vectors, for the springs' row sweep
+    RowBuffers<6> spring_rows;                // the sweep's rows: force and K v
+    // the springs' linearisation, per spring: beta = max(0, 1 - rest / length) and the unit
+    // direction e from the first node to the second; K_s = lambda (beta I + (1 - beta) e e^T),
+    // D_s = mu e e^T
+    SpringPlanes spring_linearisation;
     std::vector<NormalLinearisation> normals;
     bool constant_jacobian_ready = false;
 

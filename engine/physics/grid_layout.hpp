@@ -1,0 +1,59 @@
+// The patch as the solver stages see it: a rows x cols grid of nodes (row-major) whose every node
+// has a spring to its east, south, south-east and south-west neighbour where the grid has one
+// (tissue/tissue_model.hpp builds exactly these). Per-spring data live in planes, one per
+// direction and quantity, indexed by the spring's first node, so the stages run as straight loops
+// over contiguous memory that the compiler vectorises. Each plane is preceded by cols + 1 zeros:
+// the spring that reaches node i in a direction can then be read at i - offset for every i (zero
+// for the first row), without a branch.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tissue/tissue_model.hpp"
+
+namespace echosim::physics {
+
+enum SpringDirection : int { kEast = 0, kSouth = 1, kSouthEast = 2, kSouthWest = 3 };
+inline constexpr int kSpringDirections = 4;
+
+struct GridLayout {
+    int rows = 0, cols = 0;
+    std::size_t n = 0;
+    // each model spring's direction and first node, in the model's order
+    std::vector<std::uint8_t> spring_direction;
+    std::vector<std::uint32_t> spring_first;
+
+    // index distance from a spring's first node to its second
+    std::size_t offset(int direction) const
+    {
+        return direction == kEast ? 1 : direction == kSouth ? std::size_t(cols) : direction == kSouthEast ? std::size_t(cols + 1)
+                                                                                                             : std::size_t(cols - 1);
+    }
+};
+
+// Throws std::invalid_argument if the model's springs are not the grid's (each direction once).
+GridLayout make_grid_layout(const tissue::TissueModel& model);
+
+// `components` planes per direction (e.g. iso, w.x, w.y, w.z), zero-padded as above.
+struct SpringPlanes {
+    int components = 0;
+    std::size_t stride = 0;  // n + cols + 1
+    std::size_t pad = 0;     // cols + 1
+    std::vector<float> data;
+
+    float* plane(int direction, int component) { return data.data() + std::size_t(components * direction + component) * stride + pad; }
+    const float* plane(int direction, int component) const
+    {
+        return data.data() + std::size_t(components * direction + component) * stride + pad;
+    }
+};
+
+SpringPlanes make_spring_planes(const GridLayout& layout, int components);
+
+// Plane vectors: 3n values, all x, then all y, then all z.
+void to_planes(const double* interleaved, std::size_t n, float* planes);
+void to_planes(const double* interleaved, std::size_t n, double* planes);
+void add_planes_to(const float* planes, std::size_t n, double* interleaved);
+
+}  // namespace echosim::physics

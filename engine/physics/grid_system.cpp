@@ -1,0 +1,245 @@
+#include "physics/grid_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/simd.hpp"
+#include "physics/tissue_state.hpp"
+
+namespace echosim::physics {
+namespace {
+
+// Sums into the `inverse` planes each node's whole diagonal block but for the contacts: its own
+// (mass and tissue column) and the block iso I + w w^T of each of the eight springs that touch it,
+// four from the node and four reaching it (read before the node, from the zero-padded planes).
+ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem& g)
+{
+    const std::size_t n = grid.n;
+    const float* __restrict own = g.diagonal.data();
+    float* __restrict b = g.inverse.data();
+    const float* __restrict iso[kSpringDirections];
+    const float* __restrict wx[kSpringDirections];
+    const float* __restrict wy[kSpringDirections];
+    const float* __restrict wz[kSpringDirections];
+    std::size_t offset[kSpringDirections];
+    for (int d = 0; d < kSpringDirections; ++d) {
+        iso[d] = g.springs.plane(d, 0);
+        wx[d] = g.springs.plane(d, 1);
+        wy[d] = g.springs.plane(d, 2);
+        wz[d] = g.springs.plane(d, 3);
+        offset[d] = grid.offset(d);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        float xx = own[i], yy = own[n + i], zz = own[2 * n + i], xy = own[3 * n + i], xz = own[4 * n + i], yz = own[5 * n + i];
+        for (int d = 0; d < kSpringDirections; ++d)
+            for (const std::ptrdiff_t at : {std::ptrdiff_t(i), std::ptrdiff_t(i) - std::ptrdiff_t(offset[d])}) {
+                const float s = iso[d][at], x = wx[d][at], y = wy[d][at], z = wz[d][at];
+                xx += s + x * x;
+                yy += s + y * y;
+                zz += s + z * z;
+                xy += x * y;
+                xz += x * z;
+                yz += y * z;
+            }
+        b[i] = xx;
+        b[n + i] = yy;
+        b[2 * n + i] = zz;
+        b[3 * n + i] = xy;
+        b[4 * n + i] = xz;
+        b[5 * n + i] = yz;
+    }
+}
+
+// In place over the `inverse` planes: each node's symmetric 3 x 3 block (xx yy zz xy xz yz) replaced
+// by its inverse, in double (the determinant of blocks of 1e-9 is near float's smallest), and by
+// zero at fixed nodes.
+ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g)
+{
+    float* __restrict m = g.inverse.data();
+    const float* __restrict free = g.free.data();
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) {
+        const double a = m[i], b = m[n + i], c = m[2 * n + i], d = m[3 * n + i], e = m[4 * n + i], f = m[5 * n + i];
+        const double c00 = b * c - f * f, c01 = e * f - d * c, c02 = d * f - b * e;
+        const double c11 = a * c - e * e, c12 = d * e - a * f, c22 = a * b - d * d;
+        const double inv = free[i] / (a * c00 + d * c01 + e * c02);
+        m[i] = float(c00 * inv);
+        m[n + i] = float(c11 * inv);
+        m[2 * n + i] = float(c22 * inv);
+        m[3 * n + i] = float(c01 * inv);
+        m[4 * n + i] = float(c02 * inv);
+        m[5 * n + i] = float(c12 * inv);
+    }
+}
+
+// The springs' blocks with h folded in, from the linearisation (beta, e):
+// h^2 K_s + h D_s = h^2 lambda (beta I + (1 - beta) e e^T) + h mu e e^T = iso I + w w^T.
+ECHOSIM_SIMD_CLONES void spring_blocks(const GridLayout& grid, const SpringPlanes& linearisation, double lambda, double mu, double h,
+                                       SpringPlanes& out)
+{
+    const float h2_lambda = float(h * h * lambda), h_mu = float(h * mu);
+    for (int d = 0; d < kSpringDirections; ++d) {
+        const float* __restrict beta = linearisation.plane(d, 0);
+        const float* __restrict ex = linearisation.plane(d, 1);
+        const float* __restrict ey = linearisation.plane(d, 2);
+        const float* __restrict ez = linearisation.plane(d, 3);
+        float* __restrict iso = out.plane(d, 0);
+        float* __restrict wx = out.plane(d, 1);
+        float* __restrict wy = out.plane(d, 2);
+        float* __restrict wz = out.plane(d, 3);
+        for (std::size_t i = 0; i < grid.n; ++i) {
+            iso[i] = h2_lambda * beta[i];
+            const float root = std::sqrt(h2_lambda * (1.0f - beta[i]) + h_mu);
+            wx[i] = root * ex[i];
+            wy[i] = root * ey[i];
+            wz[i] = root * ez[i];
+        }
+    }
+}
+
+}  // namespace
+
+GridSystem make_grid_system(const GridLayout& grid, const std::vector<std::uint8_t>& fixed)
+{
+    GridSystem g;
+    g.springs = make_spring_planes(grid, 4);
+    g.diagonal.assign(6 * grid.n, 0.0f);
+    g.inverse.assign(6 * grid.n, 0.0f);
+    g.free.resize(grid.n);
+    for (std::size_t i = 0; i < grid.n; ++i) g.free[i] = fixed[i] ? 0.0f : 1.0f;
+    g.contacts.reserve(1024);
+    return g;
+}
+
+void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw& law, const TissueState& s, double h,
+                    GridSystem& g)
+{
+    const double h2 = h * h;
+    const std::size_t n = s.grid.n;
+
+    spring_blocks(s.grid, s.spring_linearisation, model.lambda, model.mu, h, g.springs);
+
+    // mass and the tissue column: (m + k_t) I + (k_n - k_t) n n^T, h folded into k_n and k_t
+    for (std::size_t i = 0; i < n; ++i) {
+        const NormalLinearisation& lin = s.normals[i];
+        const double k_n = h2 * lin.stiffness + h * lin.damping, k_t = h2 * lin.lateral_stiffness + h * lin.lateral_damping;
+        const double iso = model.mass[i] * 1e-3 + k_t, along = k_n - k_t;
+        const Eigen::Vector3d& nn = lin.n;
+        const double block[6] = {iso + along * nn.x() * nn.x(), iso + along * nn.y() * nn.y(), iso + along * nn.z() * nn.z(),
+                                 along * nn.x() * nn.y(),       along * nn.x() * nn.z(),       along * nn.y() * nn.z()};
+        for (int c = 0; c < 6; ++c) g.diagonal[std::size_t(c) * n + i] = float(block[c]);
+    }
+
+    // contacts: (h^2 + h tau) k (w a)(w a)^T
+    const double scale = h2 + h * law.damping_time;
+    g.contacts.clear();
+    for (const contact::Contact& c : s.contacts.contacts) {
+        const double root = std::sqrt(scale * c.stiffness);
+        g.contacts.push_back({c.nodes, {float(root * c.weights[0]), float(root * c.weights[1]), float(root * c.weights[2])}});
+    }
+    for (int c = 0; c < 3; ++c) g.axis[std::size_t(c)] = float(s.contacts.axis[c]);
+
+    // the block-Jacobi preconditioner: each node's whole diagonal block (its own, and every spring
+    // and contact that touches it) summed into `inverse`, then inverted there
+    sum_diagonal_blocks(s.grid, g);
+    const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
+    const float aa[6] = {ax * ax, ay * ay, az * az, ax * ay, ax * az, ay * az};
+    for (const ContactTerm& c : g.contacts)
+        for (int k = 0; k < 3; ++k)
+            for (int e = 0; e < 6; ++e) g.inverse[std::size_t(e) * n + c.nodes[std::size_t(k)]] += c.g[std::size_t(k)] * c.g[std::size_t(k)] * aa[e];
+    invert_blocks(n, g);
+}
+
+ECHOSIM_SIMD_CLONES double system_product(const GridLayout& grid, const GridSystem& g, const float* p, float* out,
+                                          RowBuffers<3>& rows)
+{
+    const std::size_t n = grid.n;
+    const float* px = p;
+    const float* py = p + n;
+    const float* pz = p + 2 * n;
+    float* ox = out;
+    float* oy = out + n;
+    float* oz = out + 2 * n;
+    double pap = 0;
+
+    // each spring's block times (p_i - p_j)
+    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 3>& b) ECHOSIM_INLINE {
+        const std::size_t second = first + grid.offset(direction);
+        const float* __restrict iso = g.springs.plane(direction, 0) + first;
+        const float* __restrict wx = g.springs.plane(direction, 1) + first;
+        const float* __restrict wy = g.springs.plane(direction, 2) + first;
+        const float* __restrict wz = g.springs.plane(direction, 3) + first;
+        const float* __restrict xi = px + first;
+        const float* __restrict yi = py + first;
+        const float* __restrict zi = pz + first;
+        const float* __restrict xj = px + second;
+        const float* __restrict yj = py + second;
+        const float* __restrict zj = pz + second;
+        float* __restrict bx = b[0];
+        float* __restrict by = b[1];
+        float* __restrict bz = b[2];
+#pragma omp simd
+        for (int k = 0; k < count; ++k) {
+            const float dx = xi[k] - xj[k], dy = yi[k] - yj[k], dz = zi[k] - zj[k];
+            const float s = wx[k] * dx + wy[k] * dy + wz[k] * dz;
+            bx[k] = iso[k] * dx + s * wx[k];
+            by[k] = iso[k] * dy + s * wy[k];
+            bz[k] = iso[k] * dz + s * wz[k];
+        }
+    };
+    // plus each node's own block, masked at fixed nodes
+    auto nodes = [&](std::size_t base, const std::array<const float*, 3>& sum) ECHOSIM_INLINE {
+        const float* __restrict d0 = g.diagonal.data() + base;
+        const float* __restrict d1 = d0 + n;
+        const float* __restrict d2 = d0 + 2 * n;
+        const float* __restrict d3 = d0 + 3 * n;
+        const float* __restrict d4 = d0 + 4 * n;
+        const float* __restrict d5 = d0 + 5 * n;
+        const float* __restrict mask = g.free.data() + base;
+        const float* __restrict rx = px + base;
+        const float* __restrict ry = py + base;
+        const float* __restrict rz = pz + base;
+        const float* __restrict sx = sum[0];
+        const float* __restrict sy = sum[1];
+        const float* __restrict sz = sum[2];
+        float* __restrict wx = ox + base;
+        float* __restrict wy = oy + base;
+        float* __restrict wz = oz + base;
+        double row_pap = 0;
+#pragma omp simd reduction(+ : row_pap)
+        for (int k = 0; k < grid.cols; ++k) {
+            const float x = mask[k] * (sx[k] + d0[k] * rx[k] + d3[k] * ry[k] + d4[k] * rz[k]);
+            const float y = mask[k] * (sy[k] + d3[k] * rx[k] + d1[k] * ry[k] + d5[k] * rz[k]);
+            const float z = mask[k] * (sz[k] + d4[k] * rx[k] + d5[k] * ry[k] + d2[k] * rz[k]);
+            wx[k] = x;
+            wy[k] = y;
+            wz[k] = z;
+            row_pap += double(rx[k] * x + ry[k] * y + rz[k] * z);
+        }
+        pap += row_pap;
+    };
+    sweep_rows(grid, 0, grid.rows, rows, springs, nodes);
+
+    // the probe's contacts: rank-one blocks along the axis over each sample's triangle
+    const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
+    for (const ContactTerm& c : g.contacts) {
+        float t = 0;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t m = c.nodes[std::size_t(k)];
+            t += c.g[std::size_t(k)] * (ax * px[m] + ay * py[m] + az * pz[m]);
+        }
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t m = c.nodes[std::size_t(k)];
+            const float f = g.free[m] * c.g[std::size_t(k)] * t;
+            ox[m] += f * ax;
+            oy[m] += f * ay;
+            oz[m] += f * az;
+            pap += double(f) * double(ax * px[m] + ay * py[m] + az * pz[m]);
+        }
+    }
+    return pap;
+}
+
+}  // namespace echosim::physics

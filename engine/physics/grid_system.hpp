@@ -1,0 +1,59 @@
+// Stage 2: the implicit step's matrix
+//     A = M + h D + h^2 K        (the probe's contact included in D and K)
+// with M the masses, D the damping and K the stiffness (both positive semi-definite: the negated
+// force Jacobians), in the grid's stencil form (grid_layout.hpp): per node its own 3 x 3 block (mass
+// and tissue column), per spring a block iso I + w w^T, per contact sample a rank-one block along
+// the probe axis. The solver's vectors are plane vectors of floats, so the product, a 9-point
+// stencil of 3 x 3 blocks, runs as a row sweep (row_sweep.hpp) whose loops vectorise. The
+// coefficients are rebuilt from the force stage's linearisation once per step, with h folded in.
+// Floats, not doubles: half the memory traffic and twice the lanes; conjugate gradient stops at a
+// relative residual of 1e-4, far above float round-off (a test bounds the product's error against
+// a double-precision assembled matrix).
+//
+// Rows of fixed nodes are the identity on zero (Baraff and Witkin's filter): the right-hand side,
+// the preconditioner and so every search direction are zero there, and the product is masked.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "contact/probe_contact.hpp"
+#include "physics/grid_layout.hpp"
+#include "physics/row_sweep.hpp"
+#include "tissue/tissue_model.hpp"
+
+namespace echosim::physics {
+
+struct TissueState;
+
+// One contact sample as the product sees it: K_c p = (sum_k g_k a.p_k) g_m a at node m, g_k the
+// square root of the contact's stiffness (with h folded in) times its barycentric weight.
+struct ContactTerm {
+    std::array<std::uint32_t, 3> nodes{};
+    std::array<float, 3> g{};
+};
+
+struct GridSystem {
+    SpringPlanes springs;  // per direction: iso, w.x, w.y, w.z
+    // per node, the symmetric block of M + the tissue column: planes xx, yy, zz, xy, xz, yz
+    std::vector<float> diagonal;
+    // block-Jacobi preconditioner: per node the inverse of A's whole diagonal block, same planes;
+    // zero at fixed nodes
+    std::vector<float> inverse;
+    std::vector<float> free;  // 1 at a free node, 0 at a fixed one
+    std::array<float, 3> axis{0, 1, 0};  // the probe axis the contacts push along
+    std::vector<ContactTerm> contacts;
+};
+
+GridSystem make_grid_system(const GridLayout& grid, const std::vector<std::uint8_t>& fixed);
+
+// Rebuilds the coefficients, the contact terms and the preconditioner for this step, from the
+// force stage's linearisation (state.spring_linearisation, state.normals) and state.contacts.
+void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw& law, const TissueState& state, double h,
+                    GridSystem& system);
+
+// out = A p over plane vectors of 3n floats; returns p . out (accumulated in double).
+double system_product(const GridLayout& grid, const GridSystem& system, const float* p, float* out, RowBuffers<3>& rows);
+
+}  // namespace echosim::physics
