@@ -23,61 +23,101 @@ void normal_spring(double c, double a, double b, double& force, double& slope)
     force = tissue::spring_force(limit, a, b) + slope * (c - limit);
 }
 
+// A run of `count` springs of one direction whose first nodes are consecutive: their forces and
+// K v into out[0..2] and out[3..5] (as the first node feels them), and with kUpdate their
+// linearisation into beta, e. Positions and velocities are plane vectors (n apart) at the first
+// and second nodes.
+struct SpringRun {
+    const double *xi, *xj, *vi, *vj;
+    std::size_t n;
+    const float *rest, *exists;
+    float *beta, *ex, *ey, *ez;
+    std::array<float*, 6> out;
+    int count;
+};
+
+template <bool kUpdate>
+ECHOSIM_INLINE inline void spring_run(const SpringRun& r, double lambda, double mu)
+{
+    const std::size_t n = r.n;
+    const double* __restrict xi = r.xi;
+    const double* __restrict xj = r.xj;
+    const double* __restrict vi = r.vi;
+    const double* __restrict vj = r.vj;
+    const float* __restrict rest = r.rest;
+    const float* __restrict exists = r.exists;
+    float* __restrict beta = r.beta;
+    float* __restrict ex = r.ex;
+    float* __restrict ey = r.ey;
+    float* __restrict ez = r.ez;
+    float* __restrict fx = r.out[0];
+    float* __restrict fy = r.out[1];
+    float* __restrict fz = r.out[2];
+    float* __restrict kx = r.out[3];
+    float* __restrict ky = r.out[4];
+    float* __restrict kz = r.out[5];
+    const int count = r.count;
+#pragma omp simd
+    for (int k = 0; k < count; ++k) {
+        const double dx = xj[k] - xi[k], dy = xj[n + k] - xi[n + k], dz = xj[2 * n + k] - xi[2 * n + k];
+        const double len2 = dx * dx + dy * dy + dz * dz;
+        const double len = std::sqrt(len2 > 1e-24 ? len2 : 1e-24);
+        const double ux = dx / len, uy = dy / len, uz = dz / len;
+        float b, e0, e1, e2;  // the linearisation: this step's, or the stored one
+        if constexpr (kUpdate) {
+            const double stretch = 1.0 - double(rest[k]) / len;
+            b = exists[k] * float(0.5 * (stretch + std::abs(stretch)));  // max(0, stretch), in a form that vectorises
+            e0 = exists[k] * float(ux);  // zero where there is no spring, so no block either
+            e1 = exists[k] * float(uy);
+            e2 = exists[k] * float(uz);
+            beta[k] = b;
+            ex[k] = e0;
+            ey[k] = e1;
+            ez[k] = e2;
+        } else {
+            b = beta[k];
+            e0 = ex[k];
+            e1 = ey[k];
+            e2 = ez[k];
+        }
+        const double wx = vi[k] - vj[k], wy = vi[n + k] - vj[n + k], wz = vi[2 * n + k] - vj[2 * n + k];
+        // f = (lambda (L - L0) + mu dL/dt) e on the first node, dL/dt = e . (v_j - v_i)
+        const double f = exists[k] * (lambda * (len - double(rest[k])) - mu * (ux * wx + uy * wy + uz * wz));
+        fx[k] = float(f * ux);
+        fy[k] = float(f * uy);
+        fz[k] = float(f * uz);
+        // K_s (v_i - v_j) = lambda (beta w + (1 - beta) (e . w) e)
+        const double along = (1.0 - b) * (e0 * wx + e1 * wy + e2 * wz);
+        kx[k] = float(lambda * (b * wx + along * e0));
+        ky[k] = float(lambda * (b * wy + along * e1));
+        kz[k] = float(lambda * (b * wz + along * e2));
+    }
+}
+
+// cloned for the processor: a function of its own, so the vectoriser sees one plain loop
+ECHOSIM_SIMD_CLONES void spring_run_updating(const SpringRun& r, double lambda, double mu) { spring_run<true>(r, lambda, mu); }
+ECHOSIM_SIMD_CLONES void spring_run_constant(const SpringRun& r, double lambda, double mu) { spring_run<false>(r, lambda, mu); }
+
 // The surface spring-dampers' forces and K v, a row sweep over the grid: each spring computed once
 // (length and direction in double, from the positions' planes), its results to both nodes.
-template <bool kUpdate>
-ECHOSIM_INLINE inline void spring_forces(const tissue::TissueModel& model, TissueState& s)
+void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update)
 {
     const GridLayout& grid = s.grid;
-    const std::size_t n = grid.n;
-    const double lambda = model.lambda, mu = model.mu;
     const double* x = s.x_planes.data();
     const double* v = s.v_planes.data();
-    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 6>& out) ECHOSIM_INLINE {
+    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 6>& out) {
         const std::size_t second = first + grid.offset(direction);
-        const double* __restrict xi = x + first;
-        const double* __restrict xj = x + second;
-        const double* __restrict vi = v + first;
-        const double* __restrict vj = v + second;
-        const float* __restrict rest = s.spring_rest.plane(direction, 0) + first;
-        const float* __restrict exists = s.spring_rest.plane(direction, 1) + first;
-        float* __restrict beta = s.spring_linearisation.plane(direction, 0) + first;
-        float* __restrict ex = s.spring_linearisation.plane(direction, 1) + first;
-        float* __restrict ey = s.spring_linearisation.plane(direction, 2) + first;
-        float* __restrict ez = s.spring_linearisation.plane(direction, 3) + first;
-        float* __restrict fx = out[0];
-        float* __restrict fy = out[1];
-        float* __restrict fz = out[2];
-        float* __restrict kx = out[3];
-        float* __restrict ky = out[4];
-        float* __restrict kz = out[5];
-#pragma omp simd
-        for (int k = 0; k < count; ++k) {
-            const double dx = xj[k] - xi[k], dy = xj[n + k] - xi[n + k], dz = xj[2 * n + k] - xi[2 * n + k];
-            const double len = std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-12);
-            const double ux = dx / len, uy = dy / len, uz = dz / len;
-            if constexpr (kUpdate) {
-                beta[k] = exists[k] * float(std::max(0.0, 1.0 - double(rest[k]) / len));
-                ex[k] = float(exists[k] * ux);  // zero where there is no spring, so no block either
-                ey[k] = float(exists[k] * uy);
-                ez[k] = float(exists[k] * uz);
-            }
-            const double wx = vi[k] - vj[k], wy = vi[n + k] - vj[n + k], wz = vi[2 * n + k] - vj[2 * n + k];
-            // f = (lambda (L - L0) + mu dL/dt) e on the first node, dL/dt = e . (v_j - v_i)
-            const double f = exists[k] * (lambda * (len - double(rest[k])) - mu * (ux * wx + uy * wy + uz * wz));
-            fx[k] = float(f * ux);
-            fy[k] = float(f * uy);
-            fz[k] = float(f * uz);
-            // K_s (v_i - v_j) = lambda (beta w + (1 - beta) (e . w) e), from the (maybe constant) linearisation
-            const double b = beta[k], along = (1.0 - b) * (ex[k] * wx + ey[k] * wy + ez[k] * wz);
-            kx[k] = float(exists[k] * lambda * (b * wx + along * ex[k]));
-            ky[k] = float(exists[k] * lambda * (b * wy + along * ey[k]));
-            kz[k] = float(exists[k] * lambda * (b * wz + along * ez[k]));
-        }
+        const SpringRun run{x + first, x + second, v + first, v + second, grid.n,
+                            s.spring_rest.plane(direction, 0) + first, s.spring_rest.plane(direction, 1) + first,
+                            s.spring_linearisation.plane(direction, 0) + first, s.spring_linearisation.plane(direction, 1) + first,
+                            s.spring_linearisation.plane(direction, 2) + first, s.spring_linearisation.plane(direction, 3) + first,
+                            out, count};
+        if (update) spring_run_updating(run, model.lambda, model.mu);
+        else spring_run_constant(run, model.lambda, model.mu);
     };
     double* force = s.force.data();
     double* kv = s.stiffness_v.data();
-    auto nodes = [&](std::size_t base, const std::array<const float*, 6>& sum) ECHOSIM_INLINE {
+    auto nodes = [&](std::size_t base, const std::array<const float*, 6>& sum) {
         for (int k = 0; k < grid.cols; ++k)
             for (std::size_t c = 0; c < 3; ++c) {
                 force[3 * (base + std::size_t(k)) + c] += double(sum[c][k]);
@@ -87,9 +127,6 @@ ECHOSIM_INLINE inline void spring_forces(const tissue::TissueModel& model, Tissu
     sweep_rows(grid, 0, grid.rows, s.spring_rows, springs, nodes);
 }
 
-ECHOSIM_SIMD_CLONES void spring_forces_updating(const tissue::TissueModel& model, TissueState& s) { spring_forces<true>(model, s); }
-ECHOSIM_SIMD_CLONES void spring_forces_constant(const tissue::TissueModel& model, TissueState& s) { spring_forces<false>(model, s); }
-
 }  // namespace
 
 void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& options, TissueState& s,
@@ -98,8 +135,7 @@ void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& o
     s.force = s.external;
     to_planes(s.x.data(), s.grid.n, s.x_planes.data());
     to_planes(s.v.data(), s.grid.n, s.v_planes.data());
-    if (update_linearisation) spring_forces_updating(model, s);
-    else spring_forces_constant(model, s);
+    spring_forces(model, s, update_linearisation);
 
     // the tissue column under each node: the non-linear spring along the normal, shear across it
     for (std::size_t i = 0; i < model.node_count(); ++i) {
