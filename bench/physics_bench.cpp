@@ -2,10 +2,13 @@
 // pressing 10 mm into the patch centre and sliding slowly across it (so contacts change every
 // step). Rows for the implicit integrator with the updated and the constant Jacobian, and for the
 // explicit integrator at the largest time step that stays stable (found here by halving), so the
-// two can be compared by simulated seconds per wall-clock second.
+// two can be compared by simulated seconds per wall-clock second; and, from 2500 nodes on, the
+// implicit one with the step's sweeps shared by every core (up to 8).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "bench/suites.hpp"
 #include "core/assets.hpp"
@@ -93,6 +96,7 @@ void physics_steps(benchmark::State& state, const PhysicsFixture& f, int refine,
     state.counters["resets"] = r.state.resets;
     state.counters["implicit"] = o.integrator == physics::Integrator::implicit_euler ? 1 : 0;
     state.counters["constant_jacobian"] = o.jacobian == physics::JacobianMode::constant ? 1 : 0;
+    state.counters["threads"] = o.threads;
 }
 
 }  // namespace
@@ -100,24 +104,29 @@ void physics_steps(benchmark::State& state, const PhysicsFixture& f, int refine,
 std::shared_ptr<void> register_physics(const SuiteOptions& options)
 {
     auto fixture = std::make_shared<PhysicsFixture>();
-    auto add = [&](int refine, physics::Integrator integrator, physics::JacobianMode jacobian) {
+    auto add = [&](int refine, physics::Integrator integrator, physics::JacobianMode jacobian, int threads = 1) {
         physics::PhysicsOptions o;
         o.integrator = integrator;
         o.jacobian = jacobian;
+        o.threads = threads;
         const int nodes = (7 * refine + 1) * (7 * refine + 1);
         std::string name = "physics/" + std::to_string(nodes) + "/";
         name += integrator == physics::Integrator::implicit_euler ? "implicit" : "explicit";
         if (integrator == physics::Integrator::implicit_euler) name += jacobian == physics::JacobianMode::constant ? "/constant" : "/updated";
+        if (threads > 1) name += "/" + std::to_string(threads) + "threads";
         benchmark::RegisterBenchmark(name.c_str(), [f = fixture.get(), refine, o](benchmark::State& s) { physics_steps(s, *f, refine, o); })
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime()
             ->MinTime(options.min_time_s);
     };
     // 64, 484, 2500, 11236 and 50625 nodes: the grid is (7 r + 1)^2
+    // with every core on the larger patches, where a step is long enough to share
+    const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
     for (int refine : {1, 3, 7, 15, 32}) {
         add(refine, physics::Integrator::implicit_euler, physics::JacobianMode::updated);
         add(refine, physics::Integrator::implicit_euler, physics::JacobianMode::constant);
         if (refine <= 7) add(refine, physics::Integrator::explicit_euler, physics::JacobianMode::updated);
+        if (refine >= 7 && cores > 1) add(refine, physics::Integrator::implicit_euler, physics::JacobianMode::updated, std::min(cores, 8));
     }
     return fixture;
 }

@@ -1,5 +1,7 @@
 #include "physics/cg.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/simd.hpp"
@@ -7,9 +9,10 @@
 namespace echosim::physics {
 namespace {
 
-// The fused pass: dv += alpha d, r -= alpha Ap, z = P r (P the per-node inverse blocks); returns
-// r . z, and r . r through `rr`.
-ECHOSIM_SIMD_CLONES double update_and_precondition(std::size_t n, const GridSystem& g, float alpha, CgVectors& v, double& rr)
+// The fused pass over nodes [begin, end): dv += alpha d, r -= alpha Ap, z = P r (P the per-node
+// inverse blocks); returns r . z, and r . r through `rr`.
+ECHOSIM_SIMD_CLONES double update_and_precondition(std::size_t n, const GridSystem& g, float alpha, CgVectors& v, std::size_t begin,
+                                                   std::size_t end, double& rr)
 {
     const float* __restrict d = v.direction.data();
     const float* __restrict q = v.product.data();
@@ -19,7 +22,7 @@ ECHOSIM_SIMD_CLONES double update_and_precondition(std::size_t n, const GridSyst
     const float* __restrict p = g.inverse.data();
     double rz = 0, sum_rr = 0;
 #pragma omp simd reduction(+ : rz, sum_rr)
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
         x[i] += alpha * d[i];
         x[n + i] += alpha * d[n + i];
         x[2 * n + i] += alpha * d[2 * n + i];
@@ -40,47 +43,58 @@ ECHOSIM_SIMD_CLONES double update_and_precondition(std::size_t n, const GridSyst
     return rz;
 }
 
-ECHOSIM_SIMD_CLONES double dot(const std::vector<float>& a, const std::vector<float>& b)
-{
-    const float* __restrict pa = a.data();
-    const float* __restrict pb = b.data();
-    double sum = 0;
-#pragma omp simd reduction(+ : sum)
-    for (std::size_t i = 0; i < a.size(); ++i) sum += double(pa[i] * pb[i]);
-    return sum;
-}
-
-// d = z + beta d
-ECHOSIM_SIMD_CLONES void next_direction(const std::vector<float>& z, float beta, std::vector<float>& d)
+// d = z + beta d over entries [begin, end) (of all three planes)
+ECHOSIM_SIMD_CLONES void next_direction(const std::vector<float>& z, float beta, std::vector<float>& d, std::size_t begin, std::size_t end)
 {
     const float* __restrict pz = z.data();
     float* __restrict pd = d.data();
-    for (std::size_t i = 0; i < d.size(); ++i) pd[i] = pz[i] + beta * pd[i];
+    for (std::size_t i = begin; i < end; ++i) pd[i] = pz[i] + beta * pd[i];
+}
+
+// The fused pass shared by the team; returns r . z and r . r, summed in part order.
+double update(const GridSystem& g, float alpha, CgVectors& v, ForkJoin& team, std::size_t n, double& rr)
+{
+    std::array<double, ForkJoin::kMaxParts> rz{}, sum_rr{};
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(n, part, team.parts());
+        rz[std::size_t(part)] = update_and_precondition(n, g, alpha, v, begin, end, sum_rr[std::size_t(part)]);
+    });
+    double total = 0;
+    rr = 0;
+    for (int part = 0; part < team.parts(); ++part) {
+        total += rz[std::size_t(part)];
+        rr += sum_rr[std::size_t(part)];
+    }
+    return total;
 }
 
 }  // namespace
 
-CgVectors make_cg_vectors(std::size_t nodes, int cols)
+CgVectors make_cg_vectors(std::size_t nodes, int cols, int parts)
 {
     CgVectors v;
     for (std::vector<float>* p : {&v.rhs, &v.dv, &v.residual, &v.z, &v.direction, &v.product}) p->assign(3 * nodes, 0.0f);
-    v.rows = RowBuffers<3>(cols);
+    v.rows.assign(std::size_t(parts), RowBuffers<3>(cols));
     return v;
 }
 
-CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& g, CgVectors& v)
+CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& g, CgVectors& v, ForkJoin& team)
 {
     CgResult out;
     const std::size_t size = v.rhs.size();
 
     // r = b - A x0 from the warm start; z = P r, the first direction
-    system_product(grid, g, v.dv.data(), v.product.data(), v.rows);
-    for (std::size_t i = 0; i < size; ++i) v.residual[i] = v.rhs[i] - v.product[i];
+    system_product(grid, g, v.dv.data(), v.product.data(), v.rows, team);
+    double bb = 0;
+    for (std::size_t i = 0; i < size; ++i) {
+        v.residual[i] = v.rhs[i] - v.product[i];
+        bb += double(v.rhs[i]) * double(v.rhs[i]);
+    }
     std::fill(v.direction.begin(), v.direction.end(), 0.0f);
     double rr = 0;
-    double rz = update_and_precondition(grid.n, g, 0.0f, v, rr);
+    double rz = update(g, 0.0f, v, team, grid.n, rr);
     v.direction = v.z;
-    const double rhs_norm = std::max(std::sqrt(dot(v.rhs, v.rhs)), 1e-30);
+    const double rhs_norm = std::max(std::sqrt(bb), 1e-30);
 
     for (; out.iterations < options.cg_max_iterations; ++out.iterations) {
         out.relative_residual = std::sqrt(rr) / rhs_norm;
@@ -89,12 +103,15 @@ CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& gri
             return out;
         }
         if (out.relative_residual <= options.cg_tolerance) break;
-        const double pap = system_product(grid, g, v.direction.data(), v.product.data(), v.rows);
+        const double pap = system_product(grid, g, v.direction.data(), v.product.data(), v.rows, team);
         if (!(pap > 0)) break;  // A is SPD: only round-off gets here, at convergence
-        const double rz_next = update_and_precondition(grid.n, g, float(rz / pap), v, rr);
+        const double rz_next = update(g, float(rz / pap), v, team, grid.n, rr);
         const float beta = float(rz_next / rz);
         rz = rz_next;
-        next_direction(v.z, beta, v.direction);
+        team.run([&](int part) {
+            const auto [begin, end] = part_range(size, part, team.parts());
+            next_direction(v.z, beta, v.direction, begin, end);
+        });
     }
     out.relative_residual = std::sqrt(rr) / rhs_norm;
     return out;

@@ -14,10 +14,10 @@ namespace echosim::physics {
 
 struct CgVectors {
     std::vector<float> rhs, dv, residual, z, direction, product;  // 3n floats each, as planes
-    RowBuffers<3> rows;
+    std::vector<RowBuffers<3>> rows;  // the product's, one per part of the team
 };
 
-CgVectors make_cg_vectors(std::size_t nodes, int cols);
+CgVectors make_cg_vectors(std::size_t nodes, int cols, int parts);
 
 struct CgResult {
     int iterations = 0;
@@ -25,7 +25,9 @@ struct CgResult {
     bool finite = true;
 };
 
-// Solves A dv = rhs for vectors.dv, from its value on entry (rhs is zero at fixed nodes).
-CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& system, CgVectors& vectors);
+// Solves A dv = rhs for vectors.dv, from its value on entry (rhs is zero at fixed nodes); the
+// passes are shared by `team`.
+CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& system, CgVectors& vectors,
+                            ForkJoin& team);
 
 }  // namespace echosim::physics

@@ -124,7 +124,11 @@ void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update
                 kv[3 * (base + std::size_t(k)) + c] = double(sum[3 + c][k]);
             }
     };
-    sweep_rows(grid, 0, grid.rows, s.spring_rows, springs, nodes);
+    ForkJoin& team = *s.team;
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(std::size_t(grid.rows), part, team.parts());
+        sweep_rows(grid, int(begin), int(end), s.spring_rows[std::size_t(part)], springs, nodes);
+    });
 }
 
 }  // namespace
@@ -138,21 +142,24 @@ void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& o
     spring_forces(model, s, update_linearisation);
 
     // the tissue column under each node: the non-linear spring along the normal, shear across it
-    for (std::size_t i = 0; i < model.node_count(); ++i) {
-        NormalLinearisation& lin = s.normals[i];
-        const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - s.rest.segment<3>(3 * Eigen::Index(i));
-        const Eigen::Vector3d vel = s.v.segment<3>(3 * Eigen::Index(i));
-        const double c = -lin.n.dot(u);  // compression
-        double f = 0, slope = 0;
-        normal_spring(c, model.a[i], model.b[i], f, slope);
-        const Eigen::Vector3d lateral = u + c * lin.n, lateral_v = vel - lin.n.dot(vel) * lin.n;
-        s.force.segment<3>(3 * Eigen::Index(i)) += (f - lin.damping * lin.n.dot(vel)) * lin.n - lin.lateral_stiffness * lateral -
-                                                   lin.lateral_damping * lateral_v;
-        s.force.segment<3>(3 * Eigen::Index(i)) += model.mass[i] * 1e-3 * options.gravity;  // kg mm/s^2 to N
-        if (update_linearisation) lin.stiffness = slope;
-        const double along_v = lin.n.dot(vel);
-        s.stiffness_v.segment<3>(3 * Eigen::Index(i)) += lin.lateral_stiffness * (vel - along_v * lin.n) + lin.stiffness * along_v * lin.n;
-    }
+    s.team->run([&](int part) {
+        const auto [begin, end] = part_range(model.node_count(), part, s.team->parts());
+        for (std::size_t i = begin; i < end; ++i) {
+            NormalLinearisation& lin = s.normals[i];
+            const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - s.rest.segment<3>(3 * Eigen::Index(i));
+            const Eigen::Vector3d vel = s.v.segment<3>(3 * Eigen::Index(i));
+            const double c = -lin.n.dot(u);  // compression
+            double f = 0, slope = 0;
+            normal_spring(c, model.a[i], model.b[i], f, slope);
+            const Eigen::Vector3d lateral = u + c * lin.n, lateral_v = vel - lin.n.dot(vel) * lin.n;
+            s.force.segment<3>(3 * Eigen::Index(i)) += (f - lin.damping * lin.n.dot(vel)) * lin.n - lin.lateral_stiffness * lateral -
+                                                       lin.lateral_damping * lateral_v;
+            s.force.segment<3>(3 * Eigen::Index(i)) += model.mass[i] * 1e-3 * options.gravity;  // kg mm/s^2 to N
+            if (update_linearisation) lin.stiffness = slope;
+            const double along_v = lin.n.dot(vel);
+            s.stiffness_v.segment<3>(3 * Eigen::Index(i)) += lin.lateral_stiffness * (vel - along_v * lin.n) + lin.stiffness * along_v * lin.n;
+        }
+    });
 }
 
 double potential_energy(const tissue::TissueModel& model, const TissueState& s)

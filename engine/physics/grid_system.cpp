@@ -14,7 +14,7 @@ namespace {
 // Sums into the `inverse` planes each node's whole diagonal block but for the contacts: its own
 // (mass and tissue column) and the block iso I + w w^T of each of the eight springs that touch it,
 // four from the node and four reaching it (read before the node, from the zero-padded planes).
-ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem& g)
+ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem& g, std::size_t begin, std::size_t end)
 {
     const std::size_t n = grid.n;
     const float* __restrict own = g.diagonal.data();
@@ -31,7 +31,7 @@ ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem&
         wz[d] = g.springs.plane(d, 3);
         offset[d] = grid.offset(d);
     }
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
         float xx = own[i], yy = own[n + i], zz = own[2 * n + i], xy = own[3 * n + i], xz = own[4 * n + i], yz = own[5 * n + i];
         for (int d = 0; d < kSpringDirections; ++d)
             for (const std::ptrdiff_t at : {std::ptrdiff_t(i), std::ptrdiff_t(i) - std::ptrdiff_t(offset[d])}) {
@@ -55,12 +55,12 @@ ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem&
 // In place over the `inverse` planes: each node's symmetric 3 x 3 block (xx yy zz xy xz yz) replaced
 // by its inverse, in double (the determinant of blocks of 1e-9 is near float's smallest), and by
 // zero at fixed nodes.
-ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g)
+ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g, std::size_t begin, std::size_t end)
 {
     float* __restrict m = g.inverse.data();
     const float* __restrict free = g.free.data();
 #pragma omp simd
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
         const double a = m[i], b = m[n + i], c = m[2 * n + i], d = m[3 * n + i], e = m[4 * n + i], f = m[5 * n + i];
         const double c00 = b * c - f * f, c01 = e * f - d * c, c02 = d * f - b * e;
         const double c11 = a * c - e * e, c12 = d * e - a * f, c22 = a * b - d * d;
@@ -76,8 +76,8 @@ ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g)
 
 // The springs' blocks with h folded in, from the linearisation (beta, e):
 // h^2 K_s + h D_s = h^2 lambda (beta I + (1 - beta) e e^T) + h mu e e^T = iso I + w w^T.
-ECHOSIM_SIMD_CLONES void spring_blocks(const GridLayout& grid, const SpringPlanes& linearisation, double lambda, double mu, double h,
-                                       SpringPlanes& out)
+ECHOSIM_SIMD_CLONES void spring_blocks(const SpringPlanes& linearisation, double lambda, double mu, double h, SpringPlanes& out,
+                                       std::size_t begin, std::size_t end)
 {
     const float h2_lambda = float(h * h * lambda), h_mu = float(h * mu);
     for (int d = 0; d < kSpringDirections; ++d) {
@@ -89,7 +89,7 @@ ECHOSIM_SIMD_CLONES void spring_blocks(const GridLayout& grid, const SpringPlane
         float* __restrict wx = out.plane(d, 1);
         float* __restrict wy = out.plane(d, 2);
         float* __restrict wz = out.plane(d, 3);
-        for (std::size_t i = 0; i < grid.n; ++i) {
+        for (std::size_t i = begin; i < end; ++i) {
             iso[i] = h2_lambda * beta[i];
             const float root = std::sqrt(h2_lambda * (1.0f - beta[i]) + h_mu);
             wx[i] = root * ex[i];
@@ -114,46 +114,61 @@ GridSystem make_grid_system(const GridLayout& grid, const std::vector<std::uint8
 }
 
 void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw& law, const TissueState& s, double h,
-                    GridSystem& g)
+                    GridSystem& g, ForkJoin& team)
 {
     const double h2 = h * h;
     const std::size_t n = s.grid.n;
+    const int parts = team.parts();
 
-    spring_blocks(s.grid, s.spring_linearisation, model.lambda, model.mu, h, g.springs);
-
-    // mass and the tissue column: (m + k_t) I + (k_n - k_t) n n^T, h folded into k_n and k_t
-    for (std::size_t i = 0; i < n; ++i) {
-        const NormalLinearisation& lin = s.normals[i];
-        const double k_n = h2 * lin.stiffness + h * lin.damping, k_t = h2 * lin.lateral_stiffness + h * lin.lateral_damping;
-        const double iso = model.mass[i] * 1e-3 + k_t, along = k_n - k_t;
-        const Eigen::Vector3d& nn = lin.n;
-        const double block[6] = {iso + along * nn.x() * nn.x(), iso + along * nn.y() * nn.y(), iso + along * nn.z() * nn.z(),
-                                 along * nn.x() * nn.y(),       along * nn.x() * nn.z(),       along * nn.y() * nn.z()};
-        for (int c = 0; c < 6; ++c) g.diagonal[std::size_t(c) * n + i] = float(block[c]);
-    }
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(n, part, parts);
+        spring_blocks(s.spring_linearisation, model.lambda, model.mu, h, g.springs, begin, end);
+        // mass and the tissue column: (m + k_t) I + (k_n - k_t) n n^T, h folded into k_n and k_t
+        for (std::size_t i = begin; i < end; ++i) {
+            const NormalLinearisation& lin = s.normals[i];
+            const double k_n = h2 * lin.stiffness + h * lin.damping, k_t = h2 * lin.lateral_stiffness + h * lin.lateral_damping;
+            const double iso = model.mass[i] * 1e-3 + k_t, along = k_n - k_t;
+            const Eigen::Vector3d& nn = lin.n;
+            const double block[6] = {iso + along * nn.x() * nn.x(), iso + along * nn.y() * nn.y(), iso + along * nn.z() * nn.z(),
+                                     along * nn.x() * nn.y(),       along * nn.x() * nn.z(),       along * nn.y() * nn.z()};
+            for (int c = 0; c < 6; ++c) g.diagonal[std::size_t(c) * n + i] = float(block[c]);
+        }
+    });
 
     // contacts: (h^2 + h tau) k (w a)(w a)^T
     const double scale = h2 + h * law.damping_time;
     g.contacts.clear();
     for (const contact::Contact& c : s.contacts.contacts) {
         const double root = std::sqrt(scale * c.stiffness);
-        g.contacts.push_back({c.nodes, {float(root * c.weights[0]), float(root * c.weights[1]), float(root * c.weights[2])}});
+        // g is zero at a fixed node, whose row of A is the identity (and p is zero there)
+        std::array<float, 3> weights;
+        for (int k = 0; k < 3; ++k) weights[std::size_t(k)] = float(root * c.weights[k]) * g.free[c.nodes[std::size_t(k)]];
+        g.contacts.push_back({c.nodes, weights});
     }
     for (int c = 0; c < 3; ++c) g.axis[std::size_t(c)] = float(s.contacts.axis[c]);
 
     // the block-Jacobi preconditioner: each node's whole diagonal block (its own, and every spring
     // and contact that touches it) summed into `inverse`, then inverted there
-    sum_diagonal_blocks(s.grid, g);
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(n, part, parts);
+        sum_diagonal_blocks(s.grid, g, begin, end);
+    });
     const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
     const float aa[6] = {ax * ax, ay * ay, az * az, ax * ay, ax * az, ay * az};
     for (const ContactTerm& c : g.contacts)
         for (int k = 0; k < 3; ++k)
             for (int e = 0; e < 6; ++e) g.inverse[std::size_t(e) * n + c.nodes[std::size_t(k)]] += c.g[std::size_t(k)] * c.g[std::size_t(k)] * aa[e];
-    invert_blocks(n, g);
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(n, part, parts);
+        invert_blocks(n, g, begin, end);
+    });
 }
 
-ECHOSIM_SIMD_CLONES double system_product(const GridLayout& grid, const GridSystem& g, const float* p, float* out,
-                                          RowBuffers<3>& rows)
+namespace {
+
+// A p over rows [row_begin, row_end), springs and nodes but not contacts; returns their p . out.
+ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const GridSystem& g, const float* p, float* out, RowBuffers<3>& rows,
+                                        int row_begin, int row_end)
 {
     const std::size_t n = grid.n;
     const float* px = p;
@@ -220,26 +235,42 @@ ECHOSIM_SIMD_CLONES double system_product(const GridLayout& grid, const GridSyst
         }
         pap += row_pap;
     };
-    sweep_rows(grid, 0, grid.rows, rows, springs, nodes);
+    sweep_rows(grid, row_begin, row_end, rows, springs, nodes);
+    return pap;
+}
 
+}  // namespace
+
+double system_product(const GridLayout& grid, const GridSystem& g, const float* p, float* out, std::vector<RowBuffers<3>>& rows,
+                      ForkJoin& team)
+{
+    std::array<double, ForkJoin::kMaxParts> partial{};
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(std::size_t(grid.rows), part, team.parts());
+        partial[std::size_t(part)] = product_rows(grid, g, p, out, rows[std::size_t(part)], int(begin), int(end));
+    });
+    double pap = 0;
+    for (int part = 0; part < team.parts(); ++part) pap += partial[std::size_t(part)];
     // the probe's contacts: rank-one blocks along the axis over each sample's triangle
+    const std::size_t n = grid.n;
     const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
+    double contact_pap = 0;
     for (const ContactTerm& c : g.contacts) {
         float t = 0;
         for (int k = 0; k < 3; ++k) {
-            const std::uint32_t m = c.nodes[std::size_t(k)];
-            t += c.g[std::size_t(k)] * (ax * px[m] + ay * py[m] + az * pz[m]);
+            const std::size_t m = c.nodes[std::size_t(k)];
+            t += c.g[std::size_t(k)] * (ax * p[m] + ay * p[n + m] + az * p[2 * n + m]);
         }
         for (int k = 0; k < 3; ++k) {
-            const std::uint32_t m = c.nodes[std::size_t(k)];
-            const float f = g.free[m] * c.g[std::size_t(k)] * t;
-            ox[m] += f * ax;
-            oy[m] += f * ay;
-            oz[m] += f * az;
-            pap += double(f) * double(ax * px[m] + ay * py[m] + az * pz[m]);
+            const std::size_t m = c.nodes[std::size_t(k)];
+            const float f = c.g[std::size_t(k)] * t;  // zero at a fixed node: its g is
+            out[m] += f * ax;
+            out[n + m] += f * ay;
+            out[2 * n + m] += f * az;
         }
+        contact_pap += double(t) * double(t);  // p . K_c p
     }
-    return pap;
+    return pap + contact_pap;
 }
 
 }  // namespace echosim::physics

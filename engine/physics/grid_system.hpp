@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "contact/probe_contact.hpp"
+#include "core/fork_join.hpp"
 #include "physics/grid_layout.hpp"
 #include "physics/row_sweep.hpp"
 #include "tissue/tissue_model.hpp"
@@ -28,7 +29,8 @@ namespace echosim::physics {
 struct TissueState;
 
 // One contact sample as the product sees it: K_c p = (sum_k g_k a.p_k) g_m a at node m, g_k the
-// square root of the contact's stiffness (with h folded in) times its barycentric weight.
+// square root of the contact's stiffness (with h folded in) times its barycentric weight, and zero
+// at a fixed node.
 struct ContactTerm {
     std::array<std::uint32_t, 3> nodes{};
     std::array<float, 3> g{};
@@ -50,10 +52,13 @@ GridSystem make_grid_system(const GridLayout& grid, const std::vector<std::uint8
 
 // Rebuilds the coefficients, the contact terms and the preconditioner for this step, from the
 // force stage's linearisation (state.spring_linearisation, state.normals) and state.contacts.
+// The work is shared by `team`.
 void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw& law, const TissueState& state, double h,
-                    GridSystem& system);
+                    GridSystem& system, ForkJoin& team);
 
-// out = A p over plane vectors of 3n floats; returns p . out (accumulated in double).
-double system_product(const GridLayout& grid, const GridSystem& system, const float* p, float* out, RowBuffers<3>& rows);
+// out = A p over plane vectors of 3n floats; returns p . out (accumulated in double). The rows are
+// shared by `team`, each part with its row buffers rows[part].
+double system_product(const GridLayout& grid, const GridSystem& system, const float* p, float* out, std::vector<RowBuffers<3>>& rows,
+                      ForkJoin& team);
 
 }  // namespace echosim::physics

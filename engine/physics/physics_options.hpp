@@ -37,6 +37,11 @@ struct PhysicsOptions {
     double cg_tolerance = 1e-4;
     int cg_max_iterations = 200;
     double max_speed = 5e4;  // [mm/s]: beyond this a node has exploded; the state is reset
+    // threads that share a step's sweeps (the physics thread and threads - 1 more, which spin
+    // between the step's passes). One is right where the physics thread must leave the other
+    // cores to rendering and haptics; more pay off on large patches (bench/RESULTS.md), never more
+    // than there are free cores. Results are deterministic for a given count.
+    int threads = 1;
 };
 
 }  // namespace echosim::physics

@@ -52,9 +52,9 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
         contact::add_contact_product(s.contacts, scene.penalty, 0.0, 1.0, s.v, s.stiffness_v);
         s.rhs = h * (s.force - h * s.stiffness_v);
         zero_fixed(s, s.rhs);
-        prepare_system(model, scene.penalty, s, h, s.system);
+        prepare_system(model, scene.penalty, s, h, s.system, *s.team);
         to_planes(s.rhs.data(), model.node_count(), s.cg.rhs.data());
-        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg);
+        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg, *s.team);
         s.last.cg_iterations = cg.iterations;
         s.last.cg_residual = cg.relative_residual;
         if (!cg.finite) s.v.setConstant(std::nan(""));  // the guard below resets and counts it

@@ -25,10 +25,11 @@ TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& o
     s.spring_linearisation = make_spring_planes(s.grid, 4);
     s.x_planes.assign(3 * n, 0.0);
     s.v_planes.assign(3 * n, 0.0);
-    s.spring_rows = RowBuffers<6>(model.cols);
+    s.team = std::make_unique<ForkJoin>(options.threads);
+    s.spring_rows.assign(std::size_t(options.threads), RowBuffers<6>(model.cols));
     s.normals.resize(n);
     s.system = make_grid_system(s.grid, s.fixed);
-    s.cg = make_cg_vectors(n, model.cols);
+    s.cg = make_cg_vectors(n, model.cols, options.threads);
     for (std::size_t i = 0; i < n; ++i) {
         s.rest.segment<3>(3 * Eigen::Index(i)) = Eigen::Vector3d(model.positions[i].x, model.positions[i].y, model.positions[i].z);
         const double m = model.mass[i] * 1e-3;  // masses in N s^2 / mm: see step.hpp on units

@@ -6,11 +6,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "contact/probe_contact.hpp"
+#include "core/fork_join.hpp"
 #include "physics/cg.hpp"
 #include "physics/grid_layout.hpp"
 #include "physics/grid_system.hpp"
@@ -58,13 +60,17 @@ struct TissueState {
     GridSystem system;  // A = M + h D + h^2 K for the step, in the grid's stencil form
     CgVectors cg;       // the solver's vectors; cg.dv is the last step's dv (the warm start)
     std::vector<double> x_planes, v_planes;  // x and v as plane vectors, for the springs' row sweep
-    RowBuffers<6> spring_rows;                // the sweep's rows: force and K v
+    std::vector<RowBuffers<6>> spring_rows;   // the sweep's rows (force and K v), one per part of the team
     // the springs' linearisation, per spring: beta = max(0, 1 - rest / length) and the unit
     // direction e from the first node to the second; K_s = lambda (beta I + (1 - beta) e e^T),
     // D_s = mu e e^T
     SpringPlanes spring_linearisation;
     std::vector<NormalLinearisation> normals;
     bool constant_jacobian_ready = false;
+
+    // the threads that share a step's sweeps (PhysicsOptions::threads); execution, not state, but
+    // owned here so that a step needs nothing beyond the model, options, scene and state
+    std::unique_ptr<ForkJoin> team;
 
     StepStats last;
     int resets = 0;   // NaNs and explosions detected and recovered from

@@ -27,10 +27,12 @@ struct Deformed {
     tissue::TissueModel model = test::shipped_model(2);
     Scene scene = make_scene(model);
     PhysicsOptions options;
-    TissueState state = make_state(model, options, scene);
+    TissueState state;
 
-    Deformed()
+    explicit Deformed(int threads)
     {
+        options.threads = threads;
+        state = make_state(model, options, scene);
         std::mt19937 rng(7);
         std::uniform_real_distribution<double> jitter(-0.3, 0.3), speed(-20.0, 20.0);
         for (Eigen::Index k = 0; k < state.x.size(); ++k) {
@@ -102,12 +104,15 @@ Eigen::VectorXd interleaved_of(const std::vector<float>& p)
     return v;
 }
 
-TEST(GridSystem, ProductMatchesTheAssembledMatrix)
+// the stages shared by one thread and by three (15 rows: parts of five)
+class GridSystemThreads : public ::testing::TestWithParam<int> {};
+
+TEST_P(GridSystemThreads, ProductMatchesTheAssembledMatrix)
 {
-    Deformed d;
+    Deformed d(GetParam());
     ASSERT_GT(d.state.contacts.contacts.size(), 10u);
     const double h = d.options.time_step;
-    prepare_system(d.model, d.scene.penalty, d.state, h, d.state.system);
+    prepare_system(d.model, d.scene.penalty, d.state, h, d.state.system, *d.state.team);
     const Eigen::MatrixXd a = assemble(d, 1.0, h, h * h);
 
     std::mt19937 rng(3);
@@ -116,7 +121,7 @@ TEST(GridSystem, ProductMatchesTheAssembledMatrix)
     for (Eigen::Index k = 0; k < p.size(); ++k) p[k] = d.state.fixed[std::size_t(k / 3)] ? 0.0 : gauss(rng);
     std::vector<float> out(std::size_t(p.size()));
     const std::vector<float> pp = planes_of(p);
-    const double pap = system_product(d.state.grid, d.state.system, pp.data(), out.data(), d.state.cg.rows);
+    const double pap = system_product(d.state.grid, d.state.system, pp.data(), out.data(), d.state.cg.rows, *d.state.team);
 
     Eigen::VectorXd expected = a * p;
     for (std::size_t i = 0; i < d.state.fixed.size(); ++i)
@@ -126,9 +131,9 @@ TEST(GridSystem, ProductMatchesTheAssembledMatrix)
     EXPECT_NEAR(pap, p.dot(expected), 1e-5 * std::abs(p.dot(expected)));
 }
 
-TEST(GridSystem, ForceStageStiffnessTimesVelocityMatchesTheAssembledMatrix)
+TEST_P(GridSystemThreads, ForceStageStiffnessTimesVelocityMatchesTheAssembledMatrix)
 {
-    Deformed d;
+    Deformed d(GetParam());
     // the force stage's K v leaves out the contacts (the step adds them from contact/)
     Eigen::VectorXd kv = d.state.stiffness_v;
     contact::add_contact_product(d.state.contacts, d.scene.penalty, 0.0, 1.0, d.state.v, kv);
@@ -136,11 +141,11 @@ TEST(GridSystem, ForceStageStiffnessTimesVelocityMatchesTheAssembledMatrix)
     EXPECT_LT((kv - expected).norm(), 1e-5 * expected.norm());
 }
 
-TEST(GridSystem, ConjugateGradientSolvesTheAssembledSystem)
+TEST_P(GridSystemThreads, ConjugateGradientSolvesTheAssembledSystem)
 {
-    Deformed d;
+    Deformed d(GetParam());
     const double h = d.options.time_step;
-    prepare_system(d.model, d.scene.penalty, d.state, h, d.state.system);
+    prepare_system(d.model, d.scene.penalty, d.state, h, d.state.system, *d.state.team);
     Eigen::MatrixXd a = assemble(d, 1.0, h, h * h);
     for (std::size_t i = 0; i < d.state.fixed.size(); ++i)
         if (d.state.fixed[i]) {
@@ -156,7 +161,7 @@ TEST(GridSystem, ConjugateGradientSolvesTheAssembledSystem)
     o.cg_tolerance = 1e-5;
     d.state.cg.rhs = planes_of(b);
     std::fill(d.state.cg.dv.begin(), d.state.cg.dv.end(), 0.0f);
-    const CgResult r = conjugate_gradient(o, d.state.grid, d.state.system, d.state.cg);
+    const CgResult r = conjugate_gradient(o, d.state.grid, d.state.system, d.state.cg, *d.state.team);
     EXPECT_TRUE(r.finite);
     EXPECT_LT(r.iterations, o.cg_max_iterations);
     const Eigen::VectorXd x = interleaved_of(d.state.cg.dv);
@@ -165,6 +170,8 @@ TEST(GridSystem, ConjugateGradientSolvesTheAssembledSystem)
     EXPECT_LT((b - a * x).norm(), 5e-5 * b.norm());
     EXPECT_LT((x - exact).norm(), 1e-3 * exact.norm());
 }
+
+INSTANTIATE_TEST_SUITE_P(GridSystem, GridSystemThreads, ::testing::Values(1, 3));
 
 TEST(GridSystem, RejectsSpringsThatAreNotTheGrids)
 {

@@ -53,6 +53,15 @@ double interaction_model_force(const tissue::TissueModel& m, int point, double d
     return f;
 }
 
+// The probe at its rest pose over the patch, pushed `press` mm in along its axis.
+void place_probe(TissueState& s, const Pose& rest, double press)
+{
+    s.probe.active = true;
+    s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
+    s.probe.position =
+        Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * (s.probe.orientation * Eigen::Vector3d::UnitY());
+}
+
 TEST(Physics, StaticEquilibriumUnderAKnownLoadMatchesTheInteractionModel)
 {
     // the fitting's assumption: the loaded node moves, all others stay; a known 6 N pushes node 27
@@ -107,13 +116,8 @@ TEST(Physics, ExplicitEulerDivergesWhereImplicitStaysStable)
         o.time_step = 1e-3;
         o.integrator = integrator;
         TissueState s = make_state(m, o, scene);
-        s.probe.active = true;
-        s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-        const Eigen::Vector3d axis = s.probe.orientation * Eigen::Vector3d::UnitY();
         for (int i = 0; i < 300; ++i) {
-            // press in over 0.1 s, then hold
-            const double press = 8.0 * std::min(1.0, (i + 1) / 100.0);
-            s.probe.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * axis;
+            place_probe(s, rest, 8.0 * std::min(1.0, (i + 1) / 100.0));  // press in over 0.1 s, then hold
             step(m, o, scene, s);
         }
         return s;
@@ -136,12 +140,9 @@ TEST(Physics, SkinSettlesUnderAStillProbe)
     o.gravity.setZero();
     TissueState s = make_state(m, o, scene);
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
-    s.probe.active = true;
-    s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
     double lo = 1e9, hi = 0;
     for (int i = 0; i < 400; ++i) {
-        const double press = 10.0 * std::min(1.0, (i + 1) / 100.0);
-        s.probe.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * (s.probe.orientation * Eigen::Vector3d::UnitY());
+        place_probe(s, rest, 10.0 * std::min(1.0, (i + 1) / 100.0));
         step(m, o, scene, s);
         if (i >= 300) lo = std::min(lo, s.last.probe_force_N), hi = std::max(hi, s.last.probe_force_N);
     }
@@ -159,11 +160,8 @@ TEST(Physics, TwoRunsGiveTheSameResult)
     const Pose rest = test::leg().probe_rest_pose(0.4f, 0.6f);
     auto run = [&] {
         TissueState s = make_state(m, o, scene);
-        s.probe.active = true;
-        s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
         for (int i = 0; i < 150; ++i) {
-            s.probe.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) +
-                               (0.05 * i) * (s.probe.orientation * Eigen::Vector3d::UnitY());
+            place_probe(s, rest, 0.05 * i);
             step(m, o, scene, s);
         }
         return s;
@@ -173,16 +171,39 @@ TEST(Physics, TwoRunsGiveTheSameResult)
     EXPECT_EQ(a.v, b.v);
 }
 
+TEST(Physics, ThreadsShareTheStepWithoutChangingTheDynamics)
+{
+    // the sweeps split by rows give the same springs and nodes; only the order of the dot
+    // products' sums differs, so the answers agree to the solver's tolerance, and a team of a
+    // given size repeats itself bit for bit
+    const tissue::TissueModel m = test::shipped_model(3);
+    const Scene scene = make_scene(m);
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    auto run = [&](int threads) {
+        PhysicsOptions o;
+        o.threads = threads;
+        TissueState s = make_state(m, o, scene);
+        for (int i = 0; i < 200; ++i) {
+            place_probe(s, rest, 0.05 * std::min(i, 100));
+            step(m, o, scene, s);
+        }
+        return s;
+    };
+    const TissueState one = run(1), two = run(2), again = run(2);  // (no more threads than CI's cores)
+    EXPECT_EQ(two.x, again.x);
+    EXPECT_GT(one.last.probe_force_N, 1.0);
+    EXPECT_NEAR(two.last.probe_force_N, one.last.probe_force_N, 1e-3 * one.last.probe_force_N);
+    EXPECT_LT((two.x - one.x).cwiseAbs().maxCoeff(), 1e-3);  // [mm], the probe 5 mm in
+    EXPECT_EQ(two.resets, 0);
+}
+
 TEST(Physics, StepAllocatesNothing)
 {
     const tissue::TissueModel m = test::shipped_model(3);
     const Scene scene = make_scene(m);
     const PhysicsOptions o;
     TissueState s = make_state(m, o, scene);
-    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
-    s.probe.active = true;
-    s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-    s.probe.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 5.0 * (s.probe.orientation * Eigen::Vector3d::UnitY());
+    place_probe(s, test::leg().probe_rest_pose(0.5f, 0.5f), 5.0);
     step(m, o, scene, s);  // first contact sizes nothing new either, but keep it out of the count
     const long before = g_allocations.load();
     for (int i = 0; i < 50; ++i) step(m, o, scene, s);
