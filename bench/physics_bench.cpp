@@ -94,9 +94,10 @@ void physics_steps(benchmark::State& state, const PhysicsFixture& f, int refine,
     state.counters["contacts"] = r.state.last.contacts;
     state.counters["probe_force_N"] = r.state.last.probe_force_N;
     state.counters["resets"] = r.state.resets;
-    state.counters["implicit"] = o.integrator == physics::Integrator::implicit_euler ? 1 : 0;
-    state.counters["constant_jacobian"] = o.jacobian == physics::JacobianMode::constant ? 1 : 0;
     state.counters["threads"] = o.threads;
+    const bool implicit = o.integrator == physics::Integrator::implicit_euler;
+    state.SetLabel(std::string("integrator=") + (implicit ? "implicit" : "explicit") +
+                   " jacobian=" + (!implicit ? "none" : o.jacobian == physics::JacobianMode::constant ? "constant" : "updated"));
 }
 
 }  // namespace
