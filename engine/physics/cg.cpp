@@ -43,12 +43,32 @@ ECHOSIM_SIMD_CLONES double update_and_precondition(std::size_t n, const GridSyst
     return rz;
 }
 
-// d = z + beta d over entries [begin, end) (of all three planes)
-ECHOSIM_SIMD_CLONES void next_direction(const std::vector<float>& z, float beta, std::vector<float>& d, std::size_t begin, std::size_t end)
+// d = z + beta d over nodes [begin, end) (in all three planes: each part keeps to its own nodes,
+// so its data stay in its core's caches from pass to pass)
+ECHOSIM_SIMD_CLONES void next_direction(std::size_t n, const std::vector<float>& z, float beta, std::vector<float>& d, std::size_t begin,
+                                        std::size_t end)
 {
     const float* __restrict pz = z.data();
     float* __restrict pd = d.data();
-    for (std::size_t i = begin; i < end; ++i) pd[i] = pz[i] + beta * pd[i];
+    for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t i = c * n + begin; i < c * n + end; ++i) pd[i] = pz[i] + beta * pd[i];
+}
+
+// r = b - q over nodes [begin, end); returns b . b there
+ECHOSIM_SIMD_CLONES double initial_residual(std::size_t n, CgVectors& v, std::size_t begin, std::size_t end)
+{
+    const float* __restrict b = v.rhs.data();
+    const float* __restrict q = v.product.data();
+    float* __restrict r = v.residual.data();
+    double bb = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+#pragma omp simd reduction(+ : bb)
+        for (std::size_t i = c * n + begin; i < c * n + end; ++i) {
+            r[i] = b[i] - q[i];
+            bb += double(b[i]) * double(b[i]);
+        }
+    }
+    return bb;
 }
 
 // The fused pass shared by the team; returns r . z and r . r, summed in part order.
@@ -81,19 +101,23 @@ CgVectors make_cg_vectors(std::size_t nodes, int cols, int parts)
 CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& g, CgVectors& v, ForkJoin& team)
 {
     CgResult out;
-    const std::size_t size = v.rhs.size();
 
     // r = b - A x0 from the warm start; z = P r, the first direction
     system_product(grid, g, v.dv.data(), v.product.data(), v.rows, team);
+    std::array<double, ForkJoin::kMaxParts> partial{};
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(grid.n, part, team.parts());
+        partial[std::size_t(part)] = initial_residual(grid.n, v, begin, end);
+    });
     double bb = 0;
-    for (std::size_t i = 0; i < size; ++i) {
-        v.residual[i] = v.rhs[i] - v.product[i];
-        bb += double(v.rhs[i]) * double(v.rhs[i]);
-    }
-    std::fill(v.direction.begin(), v.direction.end(), 0.0f);
+    for (int part = 0; part < team.parts(); ++part) bb += partial[std::size_t(part)];
+    std::fill(v.direction.begin(), v.direction.end(), 0.0f);  // (alpha 0 times a stale NaN would still be NaN)
     double rr = 0;
-    double rz = update(g, 0.0f, v, team, grid.n, rr);
-    v.direction = v.z;
+    double rz = update(g, 0.0f, v, team, grid.n, rr);  // alpha = 0: z = P r, and r . z, r . r
+    team.run([&](int part) {
+        const auto [begin, end] = part_range(grid.n, part, team.parts());
+        next_direction(grid.n, v.z, 0.0f, v.direction, begin, end);  // d = z
+    });
     const double rhs_norm = std::max(std::sqrt(bb), 1e-30);
 
     for (; out.iterations < options.cg_max_iterations; ++out.iterations) {
@@ -109,8 +133,8 @@ CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& gri
         const float beta = float(rz_next / rz);
         rz = rz_next;
         team.run([&](int part) {
-            const auto [begin, end] = part_range(size, part, team.parts());
-            next_direction(v.z, beta, v.direction, begin, end);
+            const auto [begin, end] = part_range(grid.n, part, team.parts());
+            next_direction(grid.n, v.z, beta, v.direction, begin, end);
         });
     }
     out.relative_residual = std::sqrt(rr) / rhs_norm;
