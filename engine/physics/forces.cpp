@@ -137,8 +137,11 @@ void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& o
                        bool update_linearisation)
 {
     s.force = s.external;
-    to_planes(s.x.data(), s.grid.n, s.x_planes.data());
-    to_planes(s.v.data(), s.grid.n, s.v_planes.data());
+    s.team->run([&](int part) {
+        const auto [begin, end] = part_range(s.grid.n, part, s.team->parts());
+        to_planes(s.x.data(), s.grid.n, s.x_planes.data(), begin, end);
+        to_planes(s.v.data(), s.grid.n, s.v_planes.data(), begin, end);
+    });
     spring_forces(model, s, update_linearisation);
 
     // the tissue column under each node: the non-linear spring along the normal, shear across it

@@ -1,5 +1,6 @@
 #include "physics/grid_layout.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -46,21 +47,30 @@ SpringPlanes make_spring_planes(const GridLayout& layout, int components)
     return p;
 }
 
-void to_planes(const double* interleaved, std::size_t n, float* planes)
+namespace {
+
+template <class T>
+void interleaved_to_planes(const double* interleaved, std::size_t n, T* planes, std::size_t begin, std::size_t end)
 {
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t c = 0; c < 3; ++c) planes[c * n + i] = float(interleaved[3 * i + c]);
+    for (std::size_t i = begin; i < std::min(end, n); ++i)
+        for (std::size_t c = 0; c < 3; ++c) planes[c * n + i] = T(interleaved[3 * i + c]);
 }
 
-void to_planes(const double* interleaved, std::size_t n, double* planes)
+}  // namespace
+
+void to_planes(const double* interleaved, std::size_t n, float* planes, std::size_t begin, std::size_t end)
 {
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t c = 0; c < 3; ++c) planes[c * n + i] = interleaved[3 * i + c];
+    interleaved_to_planes(interleaved, n, planes, begin, end);
 }
 
-void add_planes_to(const float* planes, std::size_t n, double* interleaved)
+void to_planes(const double* interleaved, std::size_t n, double* planes, std::size_t begin, std::size_t end)
 {
-    for (std::size_t i = 0; i < n; ++i)
+    interleaved_to_planes(interleaved, n, planes, begin, end);
+}
+
+void add_planes_to(const float* planes, std::size_t n, double* interleaved, std::size_t begin, std::size_t end)
+{
+    for (std::size_t i = begin; i < std::min(end, n); ++i)
         for (std::size_t c = 0; c < 3; ++c) interleaved[3 * i + c] += double(planes[c * n + i]);
 }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstddef>
 #include <vector>
 
 #include "tissue/tissue_model.hpp"
@@ -51,9 +52,10 @@ struct SpringPlanes {
 
 SpringPlanes make_spring_planes(const GridLayout& layout, int components);
 
-// Plane vectors: 3n values, all x, then all y, then all z.
-void to_planes(const double* interleaved, std::size_t n, float* planes);
-void to_planes(const double* interleaved, std::size_t n, double* planes);
-void add_planes_to(const float* planes, std::size_t n, double* interleaved);
+// Plane vectors: 3n values, all x, then all y, then all z. Conversions of nodes [begin, end) (by
+// default all) to and from the state's interleaved doubles (node i at 3i..3i+2).
+void to_planes(const double* interleaved, std::size_t n, float* planes, std::size_t begin = 0, std::size_t end = SIZE_MAX);
+void to_planes(const double* interleaved, std::size_t n, double* planes, std::size_t begin = 0, std::size_t end = SIZE_MAX);
+void add_planes_to(const float* planes, std::size_t n, double* interleaved, std::size_t begin = 0, std::size_t end = SIZE_MAX);
 
 }  // namespace echosim::physics

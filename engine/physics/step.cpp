@@ -24,6 +24,16 @@ void zero_fixed(const TissueState& s, Eigen::VectorXd& vec)
         if (s.fixed[i]) vec.segment<3>(3 * Eigen::Index(i)).setZero();
 }
 
+// The right-hand side h (f - h K v) of nodes [begin, end), zero at fixed ones, into the solver's planes.
+void right_hand_side(TissueState& s, double h, std::size_t begin, std::size_t end)
+{
+    const std::size_t n = s.grid.n;
+    float* rhs = s.cg.rhs.data();
+    for (std::size_t i = begin; i < end; ++i)
+        for (std::size_t c = 0; c < 3; ++c)
+            rhs[c * n + i] = s.fixed[i] ? 0.0f : float(h * (s.force[Eigen::Index(3 * i + c)] - h * s.stiffness_v[Eigen::Index(3 * i + c)]));
+}
+
 }  // namespace
 
 Scene make_scene(const tissue::TissueModel& model)
@@ -50,15 +60,21 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
     // 3: integrate
     if (options.integrator == Integrator::implicit_euler) {
         contact::add_contact_product(s.contacts, scene.penalty, 0.0, 1.0, s.v, s.stiffness_v);
-        s.rhs = h * (s.force - h * s.stiffness_v);
-        zero_fixed(s, s.rhs);
-        prepare_system(model, scene.penalty, s, h, s.system, *s.team);
-        to_planes(s.rhs.data(), model.node_count(), s.cg.rhs.data());
-        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg, *s.team);
+        ForkJoin& team = *s.team;
+        team.run([&](int part) {  // rhs = h (f - h K v), zero at fixed nodes, as planes
+            const auto [begin, end] = part_range(model.node_count(), part, team.parts());
+            right_hand_side(s, h, begin, end);
+        });
+        prepare_system(model, scene.penalty, s, h, s.system, team);
+        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg, team);
         s.last.cg_iterations = cg.iterations;
         s.last.cg_residual = cg.relative_residual;
         if (!cg.finite) s.v.setConstant(std::nan(""));  // the guard below resets and counts it
-        else add_planes_to(s.cg.dv.data(), model.node_count(), s.v.data());
+        else
+            team.run([&](int part) {
+                const auto [begin, end] = part_range(model.node_count(), part, team.parts());
+                add_planes_to(s.cg.dv.data(), model.node_count(), s.v.data(), begin, end);
+            });
     } else {
         for (std::size_t i = 0; i < model.node_count(); ++i)
             s.v.segment<3>(3 * Eigen::Index(i)) += h * s.inv_mass_scaled[i] * s.force.segment<3>(3 * Eigen::Index(i));

@@ -12,7 +12,7 @@ TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& o
     TissueState s;
     const std::size_t n = model.node_count();
     const Eigen::Index dof = Eigen::Index(3 * n);
-    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.rest, &s.external, &s.force, &s.stiffness_v, &s.rhs})
+    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.rest, &s.external, &s.force, &s.stiffness_v})
         *v = Eigen::VectorXd::Zero(dof);
     s.inv_mass_scaled.resize(n);
     s.fixed.assign(model.boundary.begin(), model.boundary.end());
