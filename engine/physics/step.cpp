@@ -1,5 +1,7 @@
 #include "physics/step.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "physics/cg.hpp"
@@ -9,19 +11,21 @@
 namespace echosim::physics {
 namespace {
 
-bool exploded(const PhysicsOptions& options, const TissueState& s)
+// x += h v for nodes [begin, end), fixed nodes held still; true if one of them has exploded (a NaN,
+// or faster than options.max_speed)
+bool advance(const PhysicsOptions& options, TissueState& s, double h, std::size_t begin, std::size_t end)
 {
-    if (!s.x.allFinite() || !s.v.allFinite()) return true;
     const double limit2 = options.max_speed * options.max_speed;
-    for (Eigen::Index i = 0; i < s.v.size(); i += 3)
-        if (s.v.segment<3>(i).squaredNorm() > limit2) return true;
-    return false;
-}
-
-void zero_fixed(const TissueState& s, Eigen::VectorXd& vec)
-{
-    for (std::size_t i = 0; i < s.fixed.size(); ++i)
-        if (s.fixed[i]) vec.segment<3>(3 * Eigen::Index(i)).setZero();
+    bool exploded = false;
+    for (std::size_t i = begin; i < end; ++i) {
+        auto v = s.v.segment<3>(3 * Eigen::Index(i));
+        if (s.fixed[i]) v.setZero();
+        auto x = s.x.segment<3>(3 * Eigen::Index(i));
+        x += h * v;
+        const double speed2 = v.squaredNorm();
+        exploded |= !(speed2 <= limit2) || !x.allFinite();  // (a NaN fails every comparison)
+    }
+    return exploded;
 }
 
 // The right-hand side h (f - h K v) of nodes [begin, end), zero at fixed ones, into the solver's planes.
@@ -80,13 +84,15 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
             s.v.segment<3>(3 * Eigen::Index(i)) += h * s.inv_mass_scaled[i] * s.force.segment<3>(3 * Eigen::Index(i));
         s.last.cg_iterations = 0;
     }
-    zero_fixed(s, s.v);
-    s.x += h * s.v;
+    // 4: positions, and the guard
+    std::array<std::uint8_t, ForkJoin::kMaxParts> exploded{};
+    s.team->run([&](int part) {
+        const auto [begin, end] = part_range(model.node_count(), part, s.team->parts());
+        exploded[std::size_t(part)] = advance(options, s, h, begin, end);
+    });
     s.time += h;
     ++s.steps;
-
-    // 4: guard
-    if (exploded(options, s)) {
+    if (std::any_of(exploded.begin(), exploded.end(), [](std::uint8_t e) { return e != 0; })) {
         reset_to_rest(s);
         ++s.resets;
     }
