@@ -136,9 +136,10 @@ void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update
 void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& options, TissueState& s,
                        bool update_linearisation)
 {
-    s.force = s.external;
     s.team->run([&](int part) {
         const auto [begin, end] = part_range(s.grid.n, part, s.team->parts());
+        const auto range = Eigen::seq(3 * Eigen::Index(begin), 3 * Eigen::Index(end) - 1);
+        s.force(range) = s.external(range);
         to_planes(s.x.data(), s.grid.n, s.x_planes.data(), begin, end);
         to_planes(s.v.data(), s.grid.n, s.v_planes.data(), begin, end);
     });

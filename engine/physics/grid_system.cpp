@@ -53,8 +53,8 @@ ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem&
 }
 
 // In place over the `inverse` planes: each node's symmetric 3 x 3 block (xx yy zz xy xz yz) replaced
-// by its inverse, in double (the determinant of blocks of 1e-9 is near float's smallest), and by
-// zero at fixed nodes.
+// by its inverse, and by zero at fixed nodes. In double: the determinant sums products of three
+// entries of about 1e-9, which float would round badly.
 ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g, std::size_t begin, std::size_t end)
 {
     float* __restrict m = g.inverse.data();
