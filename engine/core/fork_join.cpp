@@ -25,15 +25,23 @@ ForkJoin::ForkJoin(int parts) : parts_(parts)
 {
     if (parts < 1 || parts > kMaxParts)
         throw std::invalid_argument("threads: " + std::to_string(parts) + " (1 to " + std::to_string(kMaxParts) + ")");
-    for (int part = 1; part < parts; ++part) workers_.emplace_back([this, part] { work(part); });
+    try {
+        for (int part = 1; part < parts; ++part) workers_.emplace_back([this, part] { work(part); });
+    } catch (...) {
+        stop_workers();  // the threads already started must be joined before they are destroyed
+        throw;
+    }
 }
 
-ForkJoin::~ForkJoin()
+ForkJoin::~ForkJoin() { stop_workers(); }
+
+void ForkJoin::stop_workers()
 {
     stop_.store(true, std::memory_order_relaxed);
     generation_.fetch_add(1, std::memory_order_release);
     generation_.notify_all();
     for (std::thread& t : workers_) t.join();
+    workers_.clear();
 }
 
 void ForkJoin::run_erased(void (*fn)(void*, int), void* task)
@@ -48,14 +56,17 @@ void ForkJoin::run_erased(void (*fn)(void*, int), void* task)
     generation_.fetch_add(1, std::memory_order_release);
     generation_.notify_all();
     fn(task, 0);
-    while (pending_.load(std::memory_order_acquire) != 0) ECHOSIM_PAUSE();
+    // the other parts take about as long as ours; should a worker have lost its core, let it run
+    for (int spins = 0; pending_.load(std::memory_order_acquire) != 0; ++spins)
+        if (spins < 4096) ECHOSIM_PAUSE();
+        else std::this_thread::yield();
 }
 
 void ForkJoin::work(int part)
 {
-    std::uint64_t seen = 0;
+    std::uint32_t seen = 0;
     for (;;) {
-        std::uint64_t now = generation_.load(std::memory_order_acquire);
+        std::uint32_t now = generation_.load(std::memory_order_acquire);
         const auto until = std::chrono::steady_clock::now() + kSpin;
         for (int spins = 0; now == seen; ++spins) {
             if (spins % 64 == 63 && std::chrono::steady_clock::now() > until) {

@@ -1,13 +1,15 @@
 // A fixed team of threads for the data-parallel loops inside one stage (the physics step's row
 // sweeps and vector passes). run(task) calls task(part) for every part in [0, parts()) at once, the
 // calling thread taking part 0, and returns when all parts are done; the parts write disjoint data
-// and their results are combined by the caller afterwards, in part order (so a run is
-// deterministic for a given team size). A team of one runs the task inline and starts no thread.
+// and their results are combined by the caller afterwards, in part order (so a computation repeats
+// itself bit for bit with a team of the same size). A team of one runs the task inline and starts
+// no thread.
 //
 // Hand-off: the caller publishes the task, then bumps `generation_` (release); a worker that sees
 // the new generation (acquire) runs its part and counts down `pending_` (release), which the caller
 // waits on (acquire). Workers spin for a short while between tasks, since a step issues dozens of
-// them back to back, then sleep on the generation. One caller at a time; tasks must not throw.
+// them back to back, then sleep on the generation; so a team should not outnumber the free cores.
+// One caller at a time; tasks must not throw.
 #pragma once
 
 #include <atomic>
@@ -39,10 +41,13 @@ public:
 private:
     void run_erased(void (*fn)(void*, int), void* task);
     void work(int part);
+    void stop_workers();
 
     int parts_ = 1;
     std::vector<std::thread> workers_;
-    std::atomic<std::uint64_t> generation_{0};
+    // 32 bits: the size the futex behind atomic wait/notify works on directly (wrapping is harmless:
+    // workers only compare it for equality)
+    std::atomic<std::uint32_t> generation_{0};
     std::atomic<int> pending_{0};
     std::atomic<bool> stop_{false};
     void (*fn_)(void*, int) = nullptr;

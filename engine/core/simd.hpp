@@ -1,6 +1,8 @@
 // Vectorised kernels without giving up the portable binary: a function marked ECHOSIM_SIMD_CLONES
 // is compiled for AVX-512, for AVX2 + FMA and for the x86-64 baseline, and the loader picks the
-// best the processor has (GCC's target_clones). Elsewhere the mark does nothing.
+// best the processor has (GCC's target_clones). Elsewhere the mark does nothing. The clones may round
+// differently (fused multiply-adds, the lanes of a vectorised sum), so such a kernel's last bits can
+// differ from one processor to another; on one machine they repeat exactly.
 #pragma once
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)

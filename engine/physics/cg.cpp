@@ -72,12 +72,12 @@ ECHOSIM_SIMD_CLONES double initial_residual(std::size_t n, CgVectors& v, std::si
 }
 
 // The fused pass shared by the team; returns r . z and r . r, summed in part order.
-double update(const GridSystem& g, float alpha, CgVectors& v, ForkJoin& team, std::size_t n, double& rr)
+double update(const GridLayout& grid, const GridSystem& g, float alpha, CgVectors& v, ForkJoin& team, double& rr)
 {
     std::array<double, ForkJoin::kMaxParts> rz{}, sum_rr{};
     team.run([&](int part) {
-        const auto [begin, end] = part_range(n, part, team.parts());
-        rz[std::size_t(part)] = update_and_precondition(n, g, alpha, v, begin, end, sum_rr[std::size_t(part)]);
+        const auto [begin, end] = part_nodes(grid, part, team.parts());
+        rz[std::size_t(part)] = update_and_precondition(grid.n, g, alpha, v, begin, end, sum_rr[std::size_t(part)]);
     });
     double total = 0;
     rr = 0;
@@ -106,16 +106,16 @@ CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& gri
     system_product(grid, g, v.dv.data(), v.product.data(), v.rows, team);
     std::array<double, ForkJoin::kMaxParts> partial{};
     team.run([&](int part) {
-        const auto [begin, end] = part_range(grid.n, part, team.parts());
+        const auto [begin, end] = part_nodes(grid, part, team.parts());
         partial[std::size_t(part)] = initial_residual(grid.n, v, begin, end);
     });
     double bb = 0;
     for (int part = 0; part < team.parts(); ++part) bb += partial[std::size_t(part)];
     std::fill(v.direction.begin(), v.direction.end(), 0.0f);  // (alpha 0 times a stale NaN would still be NaN)
     double rr = 0;
-    double rz = update(g, 0.0f, v, team, grid.n, rr);  // alpha = 0: z = P r, and r . z, r . r
+    double rz = update(grid, g, 0.0f, v, team, rr);  // alpha = 0: z = P r, and r . z, r . r
     team.run([&](int part) {
-        const auto [begin, end] = part_range(grid.n, part, team.parts());
+        const auto [begin, end] = part_nodes(grid, part, team.parts());
         next_direction(grid.n, v.z, 0.0f, v.direction, begin, end);  // d = z
     });
     const double rhs_norm = std::max(std::sqrt(bb), 1e-30);
@@ -128,12 +128,16 @@ CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& gri
         }
         if (out.relative_residual <= options.cg_tolerance) break;
         const double pap = system_product(grid, g, v.direction.data(), v.product.data(), v.rows, team);
+        if (!std::isfinite(pap)) {  // (a NaN in the preconditioner or the product would pass for convergence below)
+            out.finite = false;
+            return out;
+        }
         if (!(pap > 0)) break;  // A is SPD: only round-off gets here, at convergence
-        const double rz_next = update(g, float(rz / pap), v, team, grid.n, rr);
+        const double rz_next = update(grid, g, float(rz / pap), v, team, rr);
         const float beta = float(rz_next / rz);
         rz = rz_next;
         team.run([&](int part) {
-            const auto [begin, end] = part_range(grid.n, part, team.parts());
+            const auto [begin, end] = part_nodes(grid, part, team.parts());
             next_direction(grid.n, v.z, beta, v.direction, begin, end);
         });
     }

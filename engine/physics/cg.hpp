@@ -1,8 +1,9 @@
 // Stage 3: preconditioned conjugate gradient (block Jacobi) on the implicit step's system
 // A dv = rhs, matrix-free through the grid system's product, warm-started from the previous step's
 // dv. Vectors are plane vectors of floats (grid_system.hpp), sized once; a solve allocates nothing.
-// Each iteration is two passes over memory: the product (with p . Ap), and one fused pass that
-// updates dv and the residual, applies the preconditioner and takes both dot products.
+// Each iteration is three passes over memory: the product (with p . Ap); one fused pass that
+// updates dv and the residual, applies the preconditioner and takes both dot products; and the new
+// direction.
 #pragma once
 
 #include <vector>

@@ -24,7 +24,7 @@ void normal_spring(double c, double a, double b, double& force, double& slope)
 }
 
 // A run of `count` springs of one direction whose first nodes are consecutive: their forces and
-// K v into out[0..2] and out[3..5] (as the first node feels them), and with kUpdate their
+// K v into out[0..2] and out[3..5] (as the first node feels them), and as kMode says their
 // linearisation into beta, e. Positions and velocities are plane vectors (n apart) at the first
 // and second nodes.
 struct SpringRun {
@@ -36,7 +36,11 @@ struct SpringRun {
     int count;
 };
 
-template <bool kUpdate>
+// How a run treats the springs' linearisation: computes and stores it, computes it for a row another
+// part of the team owns (and stores nothing), or reads the stored one (the constant Jacobian).
+enum class Linearise { update_and_store, update, stored };
+
+template <Linearise kMode>
 ECHOSIM_INLINE inline void spring_run(const SpringRun& r, double lambda, double mu)
 {
     const std::size_t n = r.n;
@@ -64,16 +68,18 @@ ECHOSIM_INLINE inline void spring_run(const SpringRun& r, double lambda, double 
         const double len = std::sqrt(len2 > 1e-24 ? len2 : 1e-24);
         const double ux = dx / len, uy = dy / len, uz = dz / len;
         float b, e0, e1, e2;  // the linearisation: this step's, or the stored one
-        if constexpr (kUpdate) {
+        if constexpr (kMode != Linearise::stored) {
             const double stretch = 1.0 - double(rest[k]) / len;
             b = exists[k] * float(0.5 * (stretch + std::abs(stretch)));  // max(0, stretch), in a form that vectorises
             e0 = exists[k] * float(ux);  // zero where there is no spring, so no block either
             e1 = exists[k] * float(uy);
             e2 = exists[k] * float(uz);
-            beta[k] = b;
-            ex[k] = e0;
-            ey[k] = e1;
-            ez[k] = e2;
+            if constexpr (kMode == Linearise::update_and_store) {
+                beta[k] = b;
+                ex[k] = e0;
+                ey[k] = e1;
+                ez[k] = e2;
+            }
         } else {
             b = beta[k];
             e0 = ex[k];
@@ -95,8 +101,12 @@ ECHOSIM_INLINE inline void spring_run(const SpringRun& r, double lambda, double 
 }
 
 // cloned for the processor: a function of its own, so the vectoriser sees one plain loop
-ECHOSIM_SIMD_CLONES void spring_run_updating(const SpringRun& r, double lambda, double mu) { spring_run<true>(r, lambda, mu); }
-ECHOSIM_SIMD_CLONES void spring_run_constant(const SpringRun& r, double lambda, double mu) { spring_run<false>(r, lambda, mu); }
+ECHOSIM_SIMD_CLONES void spring_run_storing(const SpringRun& r, double lambda, double mu)
+{
+    spring_run<Linearise::update_and_store>(r, lambda, mu);
+}
+ECHOSIM_SIMD_CLONES void spring_run_updating(const SpringRun& r, double lambda, double mu) { spring_run<Linearise::update>(r, lambda, mu); }
+ECHOSIM_SIMD_CLONES void spring_run_stored(const SpringRun& r, double lambda, double mu) { spring_run<Linearise::stored>(r, lambda, mu); }
 
 // The surface spring-dampers' forces and K v, a row sweep over the grid: each spring computed once
 // (length and direction in double, from the positions' planes), its results to both nodes.
@@ -105,15 +115,16 @@ void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update
     const GridLayout& grid = s.grid;
     const double* x = s.x_planes.data();
     const double* v = s.v_planes.data();
-    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 6>& out) {
+    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 6>& out, bool owned) {
         const std::size_t second = first + grid.offset(direction);
         const SpringRun run{x + first, x + second, v + first, v + second, grid.n,
                             s.spring_rest.plane(direction, 0) + first, s.spring_rest.plane(direction, 1) + first,
                             s.spring_linearisation.plane(direction, 0) + first, s.spring_linearisation.plane(direction, 1) + first,
                             s.spring_linearisation.plane(direction, 2) + first, s.spring_linearisation.plane(direction, 3) + first,
                             out, count};
-        if (update) spring_run_updating(run, model.lambda, model.mu);
-        else spring_run_constant(run, model.lambda, model.mu);
+        if (!update) spring_run_stored(run, model.lambda, model.mu);
+        else if (owned) spring_run_storing(run, model.lambda, model.mu);
+        else spring_run_updating(run, model.lambda, model.mu);
     };
     double* force = s.force.data();
     double* kv = s.stiffness_v.data();
@@ -126,7 +137,7 @@ void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update
     };
     ForkJoin& team = *s.team;
     team.run([&](int part) {
-        const auto [begin, end] = part_range(std::size_t(grid.rows), part, team.parts());
+        const auto [begin, end] = part_rows(grid, part, team.parts());
         sweep_rows(grid, int(begin), int(end), s.spring_rows[std::size_t(part)], springs, nodes);
     });
 }
@@ -137,7 +148,7 @@ void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& o
                        bool update_linearisation)
 {
     s.team->run([&](int part) {
-        const auto [begin, end] = part_range(s.grid.n, part, s.team->parts());
+        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
         const auto range = Eigen::seq(3 * Eigen::Index(begin), 3 * Eigen::Index(end) - 1);
         s.force(range) = s.external(range);
         to_planes(s.x.data(), s.grid.n, s.x_planes.data(), begin, end);
@@ -147,7 +158,7 @@ void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& o
 
     // the tissue column under each node: the non-linear spring along the normal, shear across it
     s.team->run([&](int part) {
-        const auto [begin, end] = part_range(model.node_count(), part, s.team->parts());
+        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
         for (std::size_t i = begin; i < end; ++i) {
             NormalLinearisation& lin = s.normals[i];
             const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - s.rest.segment<3>(3 * Eigen::Index(i));

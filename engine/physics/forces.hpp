@@ -5,9 +5,9 @@
 //   gravity            m g
 //   external           whatever the caller put in state.external (tests, haptic reaction)
 // Alongside, K v (the stiffness blocks times the velocities) for the implicit step's right-hand
-// side, while each spring's linearisation is at hand. The stiffness blocks are kept positive semi-definite, as conjugate gradient needs: the
-// transverse term of a compressed surface spring (which would buckle it) is dropped (Choi and Ko
-// 2002).
+// side, while each spring's linearisation is at hand. The stiffness blocks are kept positive
+// semi-definite, as conjugate gradient needs: the transverse term of a compressed surface spring
+// (which would buckle it) is dropped (Choi and Ko 2002).
 #pragma once
 
 #include "physics/physics_options.hpp"

@@ -17,6 +17,9 @@ GridLayout make_grid_layout(const tissue::TissueModel& model)
                                     std::to_string(g.cols) + " grid");
     std::vector<std::uint8_t> taken(std::size_t(kSpringDirections) * g.n, 0);
     for (const tissue::Spring& sp : model.springs) {
+        if (sp.i >= g.n || sp.j >= g.n)
+            throw std::invalid_argument("tissue model: spring " + std::to_string(sp.i) + "-" + std::to_string(sp.j) + " names a node beyond the " +
+                                        std::to_string(g.n) + " nodes");
         const int ri = int(sp.i) / g.cols, ci = int(sp.i) % g.cols, rj = int(sp.j) / g.cols, cj = int(sp.j) % g.cols;
         // a spring's blocks read the same from either end, so each goes to its upper (or western) node
         const bool forward = rj > ri || (rj == ri && cj > ci);

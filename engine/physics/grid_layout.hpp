@@ -7,10 +7,12 @@
 // for the first row), without a branch.
 #pragma once
 
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "core/fork_join.hpp"
 #include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
@@ -35,6 +37,19 @@ struct GridLayout {
 
 // Throws std::invalid_argument if the model's springs are not the grid's (each direction once).
 GridLayout make_grid_layout(const tissue::TissueModel& model);
+
+// What part `part` of a team of `parts` takes of the grid: whole rows, as [first, end) rows or as
+// the nodes of those rows. Every pass of a step splits this way, so a part keeps to the same data
+// (and its core's caches) from pass to pass.
+inline std::pair<std::size_t, std::size_t> part_rows(const GridLayout& g, int part, int parts)
+{
+    return part_range(std::size_t(g.rows), part, parts);
+}
+inline std::pair<std::size_t, std::size_t> part_nodes(const GridLayout& g, int part, int parts)
+{
+    const auto [first, end] = part_rows(g, part, parts);
+    return {first * std::size_t(g.cols), end * std::size_t(g.cols)};
+}
 
 // `components` planes per direction (e.g. iso, w.x, w.y, w.z), zero-padded as above.
 struct SpringPlanes {

@@ -64,7 +64,8 @@ ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g, std::size_t
         const double a = m[i], b = m[n + i], c = m[2 * n + i], d = m[3 * n + i], e = m[4 * n + i], f = m[5 * n + i];
         const double c00 = b * c - f * f, c01 = e * f - d * c, c02 = d * f - b * e;
         const double c11 = a * c - e * e, c12 = d * e - a * f, c22 = a * b - d * d;
-        const double inv = free[i] / (a * c00 + d * c01 + e * c02);
+        // (a select, not free / det: a fixed node's block must give zero even were it singular)
+        const double inv = free[i] != 0.0f ? 1.0 / (a * c00 + d * c01 + e * c02) : 0.0;
         m[i] = float(c00 * inv);
         m[n + i] = float(c11 * inv);
         m[2 * n + i] = float(c22 * inv);
@@ -121,7 +122,7 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
     const int parts = team.parts();
 
     team.run([&](int part) {
-        const auto [begin, end] = part_range(n, part, parts);
+        const auto [begin, end] = part_nodes(s.grid, part, parts);
         spring_blocks(s.spring_linearisation, model.lambda, model.mu, h, g.springs, begin, end);
         // mass and the tissue column: (m + k_t) I + (k_n - k_t) n n^T, h folded into k_n and k_t
         for (std::size_t i = begin; i < end; ++i) {
@@ -140,7 +141,7 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
     g.contacts.clear();
     for (const contact::Contact& c : s.contacts.contacts) {
         const double root = std::sqrt(scale * c.stiffness);
-        // g is zero at a fixed node, whose row of A is the identity (and p is zero there)
+        // g is zero at a fixed node, whose row of A is the identity on zero (p is zero there)
         std::array<float, 3> weights;
         for (int k = 0; k < 3; ++k) weights[std::size_t(k)] = float(root * c.weights[k]) * g.free[c.nodes[std::size_t(k)]];
         g.contacts.push_back({c.nodes, weights});
@@ -150,7 +151,7 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
     // the block-Jacobi preconditioner: each node's whole diagonal block (its own, and every spring
     // and contact that touches it) summed into `inverse`, then inverted there
     team.run([&](int part) {
-        const auto [begin, end] = part_range(n, part, parts);
+        const auto [begin, end] = part_nodes(s.grid, part, parts);
         sum_diagonal_blocks(s.grid, g, begin, end);
     });
     const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
@@ -159,7 +160,7 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
         for (int k = 0; k < 3; ++k)
             for (int e = 0; e < 6; ++e) g.inverse[std::size_t(e) * n + c.nodes[std::size_t(k)]] += c.g[std::size_t(k)] * c.g[std::size_t(k)] * aa[e];
     team.run([&](int part) {
-        const auto [begin, end] = part_range(n, part, parts);
+        const auto [begin, end] = part_nodes(s.grid, part, parts);
         invert_blocks(n, g, begin, end);
     });
 }
@@ -180,7 +181,7 @@ ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const GridSystem
     double pap = 0;
 
     // each spring's block times (p_i - p_j)
-    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 3>& b) ECHOSIM_INLINE {
+    auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 3>& b, bool) ECHOSIM_INLINE {
         const std::size_t second = first + grid.offset(direction);
         const float* __restrict iso = g.springs.plane(direction, 0) + first;
         const float* __restrict wx = g.springs.plane(direction, 1) + first;
@@ -246,7 +247,7 @@ double system_product(const GridLayout& grid, const GridSystem& g, const float* 
 {
     std::array<double, ForkJoin::kMaxParts> partial{};
     team.run([&](int part) {
-        const auto [begin, end] = part_range(std::size_t(grid.rows), part, team.parts());
+        const auto [begin, end] = part_rows(grid, part, team.parts());
         partial[std::size_t(part)] = product_rows(grid, g, p, out, rows[std::size_t(part)], int(begin), int(end));
     });
     double pap = 0;

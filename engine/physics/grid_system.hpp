@@ -6,6 +6,7 @@
 // the probe axis. The solver's vectors are plane vectors of floats, so the product, a 9-point
 // stencil of 3 x 3 blocks, runs as a row sweep (row_sweep.hpp) whose loops vectorise. The
 // coefficients are rebuilt from the force stage's linearisation once per step, with h folded in.
+// Units: A's blocks in N s^2/mm (a mass: dv in mm/s times A gives an impulse h f in N s).
 // Floats, not doubles: half the memory traffic and twice the lanes; conjugate gradient stops at a
 // relative residual of 1e-4, far above float round-off (a test bounds the product's error against
 // a double-precision assembled matrix).
@@ -30,7 +31,7 @@ struct TissueState;
 
 // One contact sample as the product sees it: K_c p = (sum_k g_k a.p_k) g_m a at node m, g_k the
 // square root of the contact's stiffness (with h folded in) times its barycentric weight, and zero
-// at a fixed node.
+// at a fixed node [sqrt(N s^2/mm)].
 struct ContactTerm {
     std::array<std::uint32_t, 3> nodes{};
     std::array<float, 3> g{};

@@ -40,7 +40,8 @@ struct PhysicsOptions {
     // threads that share a step's sweeps (the physics thread and threads - 1 more, which spin
     // between the step's passes). One is right where the physics thread must leave the other
     // cores to rendering and haptics; more pay off on large patches (bench/RESULTS.md), never more
-    // than there are free cores. Results are deterministic for a given count.
+    // than there are free cores. Read when the state is made (make_state starts the team). Results
+    // repeat bit for bit for a given count; between counts they agree to the CG tolerance.
     int threads = 1;
 };
 

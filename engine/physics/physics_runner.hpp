@@ -3,7 +3,8 @@
 //   in:  ProbeCommand   (latest wins) from whoever moves the probe (window, scripted exam, haptics)
 //   out: SurfaceSnapshot (latest wins) to one reader, the renderer
 // Headless runs do not start the thread: step_to(t) runs the same steps in the caller's thread on
-// simulated time, so an exam or a test is reproducible step for step.
+// simulated time, so an exam or a test is reproducible step for step (on one machine, with one
+// PhysicsOptions::threads: see core/simd.hpp and core/fork_join.hpp on what can change the last bits).
 #pragma once
 
 #include <atomic>

@@ -28,12 +28,13 @@ struct RowBuffers {
     float* at(int which, int component) { return data.data() + std::size_t(which * C + component) * std::size_t(cols + 2); }
 };
 
-// springs(direction, first, count, out): writes the contributions of `count` springs of `direction`
-// whose first nodes are first, first + 1, ..., component c of spring k to out[c][k] (as the first
-// node feels it; the second feels its negative).
+// springs(direction, first, count, out, owned): writes the contributions of `count` springs of
+// `direction` whose first nodes are first, first + 1, ..., component c of spring k to out[c][k] (as
+// the first node feels it; the second feels its negative). `owned` is false for the row before
+// row_begin, which the sweep recomputes for its downward springs: another range owns that row, so
+// the callback must not write anything of its springs but `out`.
 // nodes(base, sum): sum[c][k] is the total on node base + k, for the row's cols nodes.
-// Rows [row_begin, row_end) are visited; the row before row_begin is recomputed, so ranges of rows
-// can be swept independently.
+// Rows [row_begin, row_end) are visited, so disjoint ranges of rows can be swept at once.
 template <int C, class Springs, class Nodes>
 ECHOSIM_INLINE inline void sweep_rows(const GridLayout& g, int row_begin, int row_end, RowBuffers<C>& b, Springs&& springs, Nodes&& nodes)
 {
@@ -45,19 +46,19 @@ ECHOSIM_INLINE inline void sweep_rows(const GridLayout& g, int row_begin, int ro
         for (int c = 0; c < C; ++c) p[std::size_t(c)] = b.at(which, c) + at;
         return p;
     };
-    auto downward = [&](int row, int which) ECHOSIM_INLINE {
+    auto downward = [&](int row, int which, bool owned) ECHOSIM_INLINE {
         const std::size_t base = std::size_t(row) * std::size_t(cols);
-        springs(kSouth, base, cols, out(which + 0, 1));
-        springs(kSouthEast, base, cols - 1, out(which + 1, 1));
-        springs(kSouthWest, base + 1, cols - 1, out(which + 2, 2));
+        springs(kSouth, base, cols, out(which + 0, 1), owned);
+        springs(kSouthEast, base, cols - 1, out(which + 1, 1), owned);
+        springs(kSouthWest, base + 1, cols - 1, out(which + 2, 2), owned);
     };
     int down = Row::kDownward, before = Row::kDownwardBefore;
-    if (row_begin > 0) downward(row_begin - 1, before);
+    if (row_begin > 0) downward(row_begin - 1, before, false);
     for (int r = row_begin; r < row_end; ++r) {
         const std::size_t base = std::size_t(r) * std::size_t(cols);
-        springs(kEast, base, cols - 1, out(Row::kEastRow, 1));
+        springs(kEast, base, cols - 1, out(Row::kEastRow, 1), true);
         if (r + 1 < g.rows) {
-            downward(r, down);
+            downward(r, down, true);
         } else {
             for (int k = 0; k < 3; ++k)
                 for (int c = 0; c < C; ++c) std::fill_n(b.at(down + k, c), cols + 2, 0.0f);

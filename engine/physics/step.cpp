@@ -66,7 +66,7 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
         contact::add_contact_product(s.contacts, scene.penalty, 0.0, 1.0, s.v, s.stiffness_v);
         ForkJoin& team = *s.team;
         team.run([&](int part) {  // rhs = h (f - h K v), zero at fixed nodes, as planes
-            const auto [begin, end] = part_range(model.node_count(), part, team.parts());
+            const auto [begin, end] = part_nodes(s.grid, part, team.parts());
             right_hand_side(s, h, begin, end);
         });
         prepare_system(model, scene.penalty, s, h, s.system, team);
@@ -76,7 +76,7 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
         if (!cg.finite) s.v.setConstant(std::nan(""));  // the guard below resets and counts it
         else
             team.run([&](int part) {
-                const auto [begin, end] = part_range(model.node_count(), part, team.parts());
+                const auto [begin, end] = part_nodes(s.grid, part, team.parts());
                 add_planes_to(s.cg.dv.data(), model.node_count(), s.v.data(), begin, end);
             });
     } else {
@@ -87,7 +87,7 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
     // 4: positions, and the guard
     std::array<std::uint8_t, ForkJoin::kMaxParts> exploded{};
     s.team->run([&](int part) {
-        const auto [begin, end] = part_range(model.node_count(), part, s.team->parts());
+        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
         exploded[std::size_t(part)] = advance(options, s, h, begin, end);
     });
     s.time += h;

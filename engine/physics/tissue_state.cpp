@@ -32,7 +32,7 @@ TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& o
     s.cg = make_cg_vectors(n, model.cols, options.threads);
     for (std::size_t i = 0; i < n; ++i) {
         s.rest.segment<3>(3 * Eigen::Index(i)) = Eigen::Vector3d(model.positions[i].x, model.positions[i].y, model.positions[i].z);
-        const double m = model.mass[i] * 1e-3;  // masses in N s^2 / mm: see step.hpp on units
+        const double m = model.mass[i] * 1e-3;  // kg to N s^2/mm, the mass unit of N and mm/s^2
         s.inv_mass_scaled[i] = 1.0 / m;
         NormalLinearisation& lin = s.normals[i];
         lin.n = Eigen::Vector3d(model.normals[i].x, model.normals[i].y, model.normals[i].z).normalized();
