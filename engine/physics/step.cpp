@@ -11,31 +11,45 @@
 namespace echosim::physics {
 namespace {
 
-// x += h v for nodes [begin, end), fixed nodes held still; true if one of them has exploded (a NaN,
-// or faster than options.max_speed)
-bool advance(const PhysicsOptions& options, TissueState& s, double h, std::size_t begin, std::size_t end)
-{
-    const double limit2 = options.max_speed * options.max_speed;
-    bool exploded = false;
-    for (std::size_t i = begin; i < end; ++i) {
-        auto v = s.v.segment<3>(3 * Eigen::Index(i));
-        if (s.fixed[i]) v.setZero();
-        auto x = s.x.segment<3>(3 * Eigen::Index(i));
-        x += h * v;
-        const double speed2 = v.squaredNorm();
-        exploded |= !(speed2 <= limit2) || !x.allFinite();  // (a NaN fails every comparison)
-    }
-    return exploded;
-}
-
-// The right-hand side h (f - h K v) of nodes [begin, end), zero at fixed ones, into the solver's planes.
-void right_hand_side(TissueState& s, double h, std::size_t begin, std::size_t end)
+// The right-hand side h (f - h K v), zero at fixed nodes, into the solver's planes.
+void right_hand_side(TissueState& s, double h)
 {
     const std::size_t n = s.grid.n;
     float* rhs = s.cg.rhs.data();
-    for (std::size_t i = begin; i < end; ++i)
-        for (std::size_t c = 0; c < 3; ++c)
-            rhs[c * n + i] = s.fixed[i] ? 0.0f : float(h * (s.force[Eigen::Index(3 * i + c)] - h * s.stiffness_v[Eigen::Index(3 * i + c)]));
+    s.team->run([&](int part) {
+        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
+        for (std::size_t i = begin; i < end; ++i)
+            for (std::size_t c = 0; c < 3; ++c)
+                rhs[c * n + i] = s.fixed[i] ? 0.0f : float(h * (s.force[Eigen::Index(3 * i + c)] - h * s.stiffness_v[Eigen::Index(3 * i + c)]));
+    });
+}
+
+// v += dv, from the solver's planes.
+void add_velocity_change(TissueState& s)
+{
+    s.team->run([&](int part) {
+        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
+        add_planes_to(s.cg.dv.data(), s.grid.n, s.v.data(), begin, end);
+    });
+}
+
+// x += h v, fixed nodes held still; true if a node has exploded (a NaN, or faster than
+// options.max_speed).
+bool advance(const PhysicsOptions& options, TissueState& s, double h)
+{
+    const double limit2 = options.max_speed * options.max_speed;
+    std::array<std::uint8_t, ForkJoin::kMaxParts> exploded{};
+    s.team->run([&](int part) {
+        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
+        for (std::size_t i = begin; i < end; ++i) {
+            auto v = s.v.segment<3>(3 * Eigen::Index(i));
+            if (s.fixed[i]) v.setZero();
+            auto x = s.x.segment<3>(3 * Eigen::Index(i));
+            x += h * v;
+            if (!(v.squaredNorm() <= limit2) || !x.allFinite()) exploded[std::size_t(part)] = 1;  // (a NaN fails every comparison)
+        }
+    });
+    return std::any_of(exploded.begin(), exploded.end(), [](std::uint8_t e) { return e != 0; });
 }
 
 }  // namespace
@@ -64,35 +78,24 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
     // 3: integrate
     if (options.integrator == Integrator::implicit_euler) {
         contact::add_contact_product(s.contacts, scene.penalty, 0.0, 1.0, s.v, s.stiffness_v);
-        ForkJoin& team = *s.team;
-        team.run([&](int part) {  // rhs = h (f - h K v), zero at fixed nodes, as planes
-            const auto [begin, end] = part_nodes(s.grid, part, team.parts());
-            right_hand_side(s, h, begin, end);
-        });
-        prepare_system(model, scene.penalty, s, h, s.system, team);
-        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg, team);
+        right_hand_side(s, h);
+        prepare_system(model, scene.penalty, s, h, s.system, *s.team);
+        const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg, *s.team);
         s.last.cg_iterations = cg.iterations;
         s.last.cg_residual = cg.relative_residual;
-        if (!cg.finite) s.v.setConstant(std::nan(""));  // the guard below resets and counts it
-        else
-            team.run([&](int part) {
-                const auto [begin, end] = part_nodes(s.grid, part, team.parts());
-                add_planes_to(s.cg.dv.data(), model.node_count(), s.v.data(), begin, end);
-            });
+        if (cg.finite) add_velocity_change(s);
+        else s.v.setConstant(std::nan(""));  // the guard below resets and counts it
     } else {
         for (std::size_t i = 0; i < model.node_count(); ++i)
             s.v.segment<3>(3 * Eigen::Index(i)) += h * s.inv_mass_scaled[i] * s.force.segment<3>(3 * Eigen::Index(i));
         s.last.cg_iterations = 0;
     }
+
     // 4: positions, and the guard
-    std::array<std::uint8_t, ForkJoin::kMaxParts> exploded{};
-    s.team->run([&](int part) {
-        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
-        exploded[std::size_t(part)] = advance(options, s, h, begin, end);
-    });
+    const bool exploded = advance(options, s, h);
     s.time += h;
     ++s.steps;
-    if (std::any_of(exploded.begin(), exploded.end(), [](std::uint8_t e) { return e != 0; })) {
+    if (exploded) {
         reset_to_rest(s);
         ++s.resets;
     }

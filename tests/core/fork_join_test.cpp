@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <numeric>
 #include <set>
 #include <stdexcept>
@@ -31,14 +32,29 @@ TEST(ForkJoin, EveryPartRunsOncePerRunOnItsOwnThread)
 
 TEST(ForkJoin, PartsRunAtTheSameTime)
 {
-    // each part waits for the other: this only finishes if they run concurrently
+    // each part waits (up to 10 s) for the other to arrive: both see it only if they run at once
     ForkJoin team(2);
     std::atomic<int> arrived{0};
-    team.run([&](int) {
+    std::vector<int> saw_both(2, 0);
+    team.run([&](int part) {
         ++arrived;
-        while (arrived.load() < 2) std::this_thread::yield();
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (arrived.load() < 2 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+        saw_both[std::size_t(part)] = arrived.load() == 2;
     });
-    EXPECT_EQ(arrived.load(), 2);
+    EXPECT_EQ(saw_both, std::vector<int>(2, 1));
+}
+
+TEST(ForkJoin, WorkersWakeAfterSleeping)
+{
+    // between steps workers stop spinning and sleep; a run after a pause must still reach them
+    ForkJoin team(2);
+    for (int i = 0; i < 3; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        std::vector<int> ran(2, 0);
+        team.run([&](int part) { ran[std::size_t(part)] = 1; });
+        EXPECT_EQ(ran, std::vector<int>(2, 1));
+    }
 }
 
 TEST(ForkJoin, ResultsAreSeenByTheCallerAfterTheRun)

@@ -201,14 +201,17 @@ TEST(Physics, StepAllocatesNothing)
 {
     const tissue::TissueModel m = test::shipped_model(3);
     const Scene scene = make_scene(m);
-    const PhysicsOptions o;
-    TissueState s = make_state(m, o, scene);
-    place_probe(s, test::leg().probe_rest_pose(0.5f, 0.5f), 5.0);
-    step(m, o, scene, s);  // first contact sizes nothing new either, but keep it out of the count
-    const long before = g_allocations.load();
-    for (int i = 0; i < 50; ++i) step(m, o, scene, s);
-    EXPECT_EQ(g_allocations.load() - before, 0);
-    EXPECT_GT(s.last.contacts, 0);
+    for (int threads : {1, 2}) {
+        PhysicsOptions o;
+        o.threads = threads;
+        TissueState s = make_state(m, o, scene);
+        place_probe(s, test::leg().probe_rest_pose(0.5f, 0.5f), 5.0);
+        step(m, o, scene, s);  // first contact sizes nothing new either, but keep it out of the count
+        const long before = g_allocations.load();
+        for (int i = 0; i < 50; ++i) step(m, o, scene, s);
+        EXPECT_EQ(g_allocations.load() - before, 0) << threads << " thread(s)";
+        EXPECT_GT(s.last.contacts, 0);
+    }
 }
 
 TEST(Physics, NanIsDetectedResetAndCounted)
