@@ -49,6 +49,8 @@ void PhysicsRunner::step_once()
     s.cg_iterations = state_.last.cg_iterations;
     s.resets = state_.resets;
     out_.publish();
+    contact_out_.write_slot() = local_contact_model(scene_.penalty, state_);
+    contact_out_.publish();
     steps_.fetch_add(1, std::memory_order_relaxed);
 }
 

@@ -1,7 +1,8 @@
 // The physics thread (DESIGN.md §2, "Threads"): steps the tissue at a fixed rate and publishes a
-// snapshot of the surface after every step. Hand-offs, both lock-free triple buffers:
-//   in:  ProbeCommand   (latest wins) from whoever moves the probe (window, scripted exam, haptics)
-//   out: SurfaceSnapshot (latest wins) to one reader, the renderer
+// snapshot of the surface after every step. Hand-offs, all lock-free triple buffers:
+//   in:  ProbeCommand      (latest wins) from whoever moves the probe (window, scripted exam, haptics)
+//   out: SurfaceSnapshot   (latest wins) to one reader, the renderer
+//   out: LocalContactModel (latest wins) to one reader, the haptic thread
 // Headless runs do not start the thread: step_to(t) runs the same steps in the caller's thread on
 // simulated time, so an exam or a test is reproducible step for step (on one machine, with one
 // PhysicsOptions::threads: see core/simd.hpp and core/fork_join.hpp on what can change the last bits).
@@ -15,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "physics/local_contact_model.hpp"
 #include "physics/physics_options.hpp"
 #include "physics/step.hpp"
 #include "physics/tissue_state.hpp"
@@ -54,8 +56,10 @@ public:
 
     // any one thread
     void command(const ProbeCommand& c);
-    // the one reader
+    // the renderer (one reader)
     const SurfaceSnapshot& latest() { return out_.read(); }
+    // the haptic thread (one reader): the skin under the probe, to render between steps
+    const LocalContactModel& latest_contact() { return contact_out_.read(); }
 
     // headless: step in this thread until the simulated time reaches t (not while running)
     void step_to(double t);
@@ -76,6 +80,7 @@ private:
     TissueState state_;  // owned by whichever thread steps: the physics thread while it runs
     TripleBuffer<ProbeCommand> in_;
     TripleBuffer<SurfaceSnapshot> out_;
+    TripleBuffer<LocalContactModel> contact_out_;
     std::thread thread_;
     std::atomic<bool> running_{false};
     std::atomic<std::int64_t> steps_{0}, overruns_{0};

@@ -23,6 +23,7 @@ TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& o
         s.spring_rest.plane(s.grid.spring_direction[k], 1)[s.grid.spring_first[k]] = 1.0f;
     }
     s.spring_linearisation = make_spring_planes(s.grid, 4);
+    s.node_scratch.assign(n, 0.0);
     s.x_planes.assign(3 * n, 0.0);
     s.v_planes.assign(3 * n, 0.0);
     s.team = std::make_unique<ForkJoin>(options.threads);

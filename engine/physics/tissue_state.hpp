@@ -56,6 +56,7 @@ struct TissueState {
     // scratch of the solver stages (sized once)
     Eigen::VectorXd force;
     Eigen::VectorXd stiffness_v;  // K v, for the implicit step's right-hand side h (f - h K v)
+    std::vector<double> node_scratch;  // one per node, zero between uses (local_contact_model)
     GridSystem system;  // A = M + h D + h^2 K for the step, in the grid's stencil form
     CgVectors cg;       // the solver's vectors; cg.dv is the last step's dv (the warm start)
     std::vector<double> x_planes, v_planes;  // x and v as plane vectors, for the springs' row sweep

@@ -59,6 +59,15 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     for (Eigen::Index i = 0; i < s.x.size(); ++i) ASSERT_EQ(snap.positions[std::size_t(i)], float(s.x[i]));
     EXPECT_DOUBLE_EQ(snap.probe_force_N, s.last.probe_force_N);
     EXPECT_GT(snap.probe_force_N, 0.5);
+
+    // the haptic thread's hand-off: the local model of that same step
+    const LocalContactModel& local = runner.latest_contact();
+    const LocalContactModel expected = local_contact_model(scene.penalty, s);
+    EXPECT_EQ(local.step, 50);
+    EXPECT_TRUE(local.in_contact);
+    EXPECT_DOUBLE_EQ(local.force, s.last.probe_force_N);
+    EXPECT_DOUBLE_EQ(local.stiffness, expected.stiffness);
+    EXPECT_EQ(local.face, c.position);
 }
 
 TEST(PhysicsRunner, ThreadStepsInRealTimeAndStops)

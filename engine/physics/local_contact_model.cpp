@@ -1,0 +1,45 @@
+#include "physics/local_contact_model.hpp"
+
+namespace echosim::physics {
+
+LocalContactModel local_contact_model(const contact::PenaltyLaw& law, TissueState& s)
+{
+    LocalContactModel m;
+    m.time = s.time;
+    m.step = s.steps;
+    m.axis = s.contacts.axis;
+    m.face = s.probe.position;
+    m.force = s.contacts.total_force;
+    m.in_contact = !s.contacts.contacts.empty();
+    if (!m.in_contact) return m;
+
+    // the penalty's stiffness acting at each node: sum over its samples of k_c w (a node moved by
+    // u along the axis changes a sample's penetration by w u)
+    std::vector<double>& penalty = s.node_scratch;
+    for (const contact::Contact& c : s.contacts.contacts)
+        for (int k = 0; k < 3; ++k) penalty[c.nodes[std::size_t(k)]] += c.stiffness * c.weights[k];
+
+    // each node once: penalty in series with the column beneath, for stiffness and for damping
+    for (const contact::Contact& c : s.contacts.contacts)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t i = c.nodes[std::size_t(k)];
+            const double k_pen = penalty[i];
+            if (k_pen <= 0.0) continue;  // done already (or a sample at zero weight)
+            penalty[i] = 0.0;
+            if (s.fixed[i]) {  // held to the leg: the penalty alone
+                m.stiffness += k_pen;
+                m.damping += law.damping_time * k_pen;
+                continue;
+            }
+            const NormalLinearisation& lin = s.normals[i];
+            const double along = lin.n.dot(m.axis), along2 = along * along;
+            const double k_col = lin.stiffness * along2 + lin.lateral_stiffness * (1.0 - along2);
+            const double d_col = lin.damping * along2 + lin.lateral_damping * (1.0 - along2);
+            const double d_pen = law.damping_time * k_pen;
+            m.stiffness += k_pen * k_col / (k_pen + k_col);
+            m.damping += d_pen * d_col / (d_pen + d_col);
+        }
+    return m;
+}
+
+}  // namespace echosim::physics

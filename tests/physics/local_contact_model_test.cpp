@@ -1,0 +1,78 @@
+// The local contact model the haptic thread will render (physics/local_contact_model) against the
+// full dynamics: pressed and settled, the probe advances a little further; the model's predicted
+// force must match where the tissue settles to within 5 % of the change (it does to 1-2 %).
+#include "physics/local_contact_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include "physics/physics_fixture.hpp"
+#include "physics/step.hpp"
+
+namespace echosim::physics {
+namespace {
+
+struct Pressed {
+    tissue::TissueModel model = test::shipped_model(7);
+    Scene scene = make_scene(model);
+    PhysicsOptions options;
+    TissueState state = make_state(model, options, scene);
+    Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+
+    Eigen::Vector3d face(double press) const
+    {
+        const Eigen::Quaterniond q(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
+        return Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * (q * Eigen::Vector3d::UnitY());
+    }
+    // holds the probe `press` mm in for `steps` steps
+    void hold(double press, int steps)
+    {
+        state.probe.active = true;
+        state.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
+        state.probe.position = face(press);
+        for (int i = 0; i < steps; ++i) step(model, options, scene, state);
+    }
+};
+
+TEST(LocalContactModel, PredictsTheSettledForceOfASmallFurtherPush)
+{
+    for (double depth : {4.0, 8.0}) {
+        Pressed p;
+        for (int i = 1; i <= 100; ++i) p.hold(depth * i / 100.0, 1);  // in over 0.1 s
+        p.hold(depth, 400);
+        const LocalContactModel model = local_contact_model(p.scene.penalty, p.state);
+        ASSERT_TRUE(model.in_contact);
+        EXPECT_NEAR(model.force, p.state.last.probe_force_N, 1e-12);
+        EXPECT_GT(model.stiffness, 0.0);
+        EXPECT_GT(model.damping, 0.0);
+
+        const double push = 0.3;  // [mm]
+        p.hold(depth + push, 400);
+        const double settled = p.state.last.probe_force_N, change = settled - model.force;
+        const double predicted = model.force_at(p.face(depth + push), Eigen::Vector3d::Zero());
+        EXPECT_GT(change, 0.02 * model.force) << "the push should be felt at " << depth << " mm";
+        EXPECT_LT(std::abs(predicted - settled), 0.05 * change) << "at " << depth << " mm: " << model.force << " N -> " << settled
+                                                                << " N, predicted " << predicted << " N";
+    }
+}
+
+TEST(LocalContactModel, NoContactNoForce)
+{
+    Pressed p;
+    p.hold(-5.0, 2);  // 5 mm above the skin
+    const LocalContactModel model = local_contact_model(p.scene.penalty, p.state);
+    EXPECT_FALSE(model.in_contact);
+    EXPECT_EQ(model.force_at(p.face(10.0), Eigen::Vector3d::Zero()), 0.0);
+}
+
+TEST(LocalContactModel, NeverPulls)
+{
+    LocalContactModel m;
+    m.in_contact = true;
+    m.force = 2.0;
+    m.stiffness = 1.0;
+    EXPECT_DOUBLE_EQ(m.force_at(m.face + 1.0 * m.axis, Eigen::Vector3d::Zero()), 3.0);
+    EXPECT_DOUBLE_EQ(m.force_at(m.face - 5.0 * m.axis, Eigen::Vector3d::Zero()), 0.0);  // withdrawn past the skin
+}
+
+}  // namespace
+}  // namespace echosim::physics
