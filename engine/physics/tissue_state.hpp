@@ -16,8 +16,8 @@
 #include "physics/cg.hpp"
 #include "physics/grid_layout.hpp"
 #include "physics/grid_system.hpp"
-#include "physics/row_sweep.hpp"
 #include "physics/physics_options.hpp"
+#include "physics/row_sweep.hpp"
 #include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
@@ -45,7 +45,7 @@ struct TissueState {
     Eigen::VectorXd x, v;            // positions [mm], velocities [mm/s]
     Eigen::VectorXd external;        // forces applied from outside (tests, haptics) [N]
     Eigen::VectorXd rest;                  // rest positions [mm]
-    std::vector<double> inv_mass_scaled;   // 1 / m, m in N s^2/mm (kg / 1000), the unit in which F = m a holds for N and mm/s^2
+    std::vector<double> inv_mass_scaled;   // 1 / m, m in N s^2/mm (kg / 1000: F = m a in N and mm/s^2)
     std::vector<std::uint8_t> fixed;       // rim nodes held to the leg
     contact::ProbeState probe;             // where the probe is, set by the caller before a step
     contact::ContactSet contacts;          // filled by the contact stage
