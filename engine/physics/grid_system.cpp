@@ -31,10 +31,12 @@ ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem&
         wz[d] = g.springs.plane(d, 3);
         offset[d] = grid.offset(d);
     }
+#pragma omp simd
     for (std::size_t i = begin; i < end; ++i) {
         float xx = own[i], yy = own[n + i], zz = own[2 * n + i], xy = own[3 * n + i], xz = own[4 * n + i], yz = own[5 * n + i];
         for (int d = 0; d < kSpringDirections; ++d)
-            for (const std::ptrdiff_t at : {std::ptrdiff_t(i), std::ptrdiff_t(i) - std::ptrdiff_t(offset[d])}) {
+            for (int end_of_spring = 0; end_of_spring < 2; ++end_of_spring) {
+                const std::ptrdiff_t at = std::ptrdiff_t(i) - (end_of_spring ? std::ptrdiff_t(offset[d]) : 0);
                 const float s = iso[d][at], x = wx[d][at], y = wy[d][at], z = wz[d][at];
                 xx += s + x * x;
                 yy += s + y * y;
@@ -90,6 +92,7 @@ ECHOSIM_SIMD_CLONES void spring_blocks(const SpringPlanes& linearisation, double
         float* __restrict wx = out.plane(d, 1);
         float* __restrict wy = out.plane(d, 2);
         float* __restrict wz = out.plane(d, 3);
+#pragma omp simd
         for (std::size_t i = begin; i < end; ++i) {
             iso[i] = h2_lambda * beta[i];
             const float root = std::sqrt(h2_lambda * (1.0f - beta[i]) + h_mu);
