@@ -1,6 +1,7 @@
 #include "physics/physics_runner.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 namespace echosim::physics {
@@ -25,10 +26,24 @@ PhysicsRunner::PhysicsRunner(const tissue::TissueModel& model, const PhysicsOpti
 
 PhysicsRunner::~PhysicsRunner() { stop(); }
 
-void PhysicsRunner::command(const ProbeCommand& c)
+std::string probe_command_error(const ProbeCommand& c)
 {
+    if (!c.position.allFinite()) return "position is not finite";
+    if (!c.orientation.coeffs().allFinite()) return "orientation is not finite";
+    if (std::abs(c.orientation.norm() - 1.0) > 1e-3) return "orientation is not a rotation (quaternion norm " + std::to_string(c.orientation.norm()) + ")";
+    if (!c.velocity.allFinite()) return "velocity is not finite";
+    return {};
+}
+
+bool PhysicsRunner::command(const ProbeCommand& c)
+{
+    if (!probe_command_error(c).empty()) {
+        refused_.fetch_add(1, std::memory_order_relaxed);
+        return false;
+    }
     in_.write_slot() = c;
     in_.publish();
+    return true;
 }
 
 void PhysicsRunner::step_once()

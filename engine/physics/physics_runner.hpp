@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -32,6 +33,10 @@ struct ProbeCommand {
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [mm/s]
 };
 
+// Why a command cannot drive the probe ("position is not finite", "orientation is not a rotation",
+// ...), or empty when it can.
+std::string probe_command_error(const ProbeCommand& c);
+
 struct SurfaceSnapshot {
     double time = 0;                 // simulated [s]
     std::int64_t step = 0;
@@ -45,6 +50,7 @@ struct SurfaceSnapshot {
 struct RunnerStats {
     std::int64_t steps = 0;
     std::int64_t overruns = 0;  // steps that started later than one period after they were due
+    std::int64_t refused_commands = 0;  // probe commands with a NaN, infinity or bad rotation
 };
 
 class PhysicsRunner {
@@ -54,8 +60,10 @@ public:
     PhysicsRunner(const PhysicsRunner&) = delete;
     PhysicsRunner& operator=(const PhysicsRunner&) = delete;
 
-    // any one thread
-    void command(const ProbeCommand& c);
+    // any one thread. A command with an error (probe_command_error) is refused, counted and false:
+    // the probe keeps its last good command, so a glitching device cannot blow up the tissue;
+    // the caller, who knows the device, reports it.
+    bool command(const ProbeCommand& c);
     // the renderer (one reader)
     const SurfaceSnapshot& latest() { return out_.read(); }
     // the haptic thread (one reader): the skin under the probe, to render between steps
@@ -67,7 +75,7 @@ public:
     // real time: a thread stepping every options.time_step of wall-clock time
     void start();
     void stop();
-    RunnerStats stats() const { return {steps_.load(), overruns_.load()}; }
+    RunnerStats stats() const { return {steps_.load(), overruns_.load(), refused_.load()}; }
 
     const tissue::TissueModel& model() const { return model_; }
 
@@ -83,7 +91,7 @@ private:
     TripleBuffer<LocalContactModel> contact_out_;
     std::thread thread_;
     std::atomic<bool> running_{false};
-    std::atomic<std::int64_t> steps_{0}, overruns_{0};
+    std::atomic<std::int64_t> steps_{0}, overruns_{0}, refused_{0};
 };
 
 }  // namespace echosim::physics

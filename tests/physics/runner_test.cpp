@@ -1,6 +1,9 @@
 #include "physics/physics_runner.hpp"
 
 #include <atomic>
+#include <cmath>
+#include <limits>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -68,6 +71,37 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     EXPECT_DOUBLE_EQ(local.force, s.last.probe_force_N);
     EXPECT_DOUBLE_EQ(local.stiffness, expected.stiffness);
     EXPECT_EQ(local.face, c.position);
+}
+
+TEST(PhysicsRunner, RefusesACommandThatIsNotAPoseAndKeepsTheLastGoodOne)
+{
+    const tissue::TissueModel m = test::shipped_model(2);
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    ProbeCommand good;
+    good.active = true;
+    good.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
+    good.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 6.0 * (good.orientation * Eigen::Vector3d::UnitY());
+    PhysicsRunner runner(m, PhysicsOptions{});
+    EXPECT_TRUE(runner.command(good));
+    runner.step_to(0.02);
+
+    ProbeCommand bad = good;
+    bad.position.y() = std::nan("");
+    EXPECT_EQ(probe_command_error(bad), "position is not finite");
+    EXPECT_FALSE(runner.command(bad));
+    bad = good;
+    bad.orientation.coeffs() *= 2.0;
+    EXPECT_NE(probe_command_error(bad).find("not a rotation"), std::string::npos);
+    EXPECT_FALSE(runner.command(bad));
+    bad = good;
+    bad.velocity.x() = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(probe_command_error(bad), "velocity is not finite");
+    EXPECT_FALSE(runner.command(bad));
+
+    runner.step_to(0.05);
+    EXPECT_EQ(runner.stats().refused_commands, 3);
+    EXPECT_EQ(runner.latest().resets, 0);
+    EXPECT_GT(runner.latest().probe_force_N, 0.5);  // still pressed by the good command
 }
 
 TEST(PhysicsRunner, ThreadStepsInRealTimeAndStops)
