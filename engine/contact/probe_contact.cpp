@@ -108,16 +108,14 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
     return int(set.contacts.size());
 }
 
-void add_contact_product(const ContactSet& set, const PenaltyLaw& law, double h, double h2, const Eigen::VectorXd& p,
-                         Eigen::VectorXd& out)
+void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out)
 {
     // the penalty pushes along the axis with stiffness k on the sample's penetration, which moves
-    // with the weighted sum of the three nodes along the axis: K = k (w a)(w a)^T, D = tau K
-    const double scale = h2 + h * law.damping_time;
+    // with the weighted sum of the three nodes along the axis: K = k (w a)(w a)^T
     for (const Contact& c : set.contacts) {
         double along = 0;
         for (int k = 0; k < 3; ++k) along += c.weights[k] * set.axis.dot(p.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])));
-        const double s = scale * c.stiffness * along;
+        const double s = c.stiffness * along;
         for (int k = 0; k < 3; ++k) out.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])) += (s * c.weights[k]) * set.axis;
     }
 }

@@ -90,9 +90,9 @@ ContactSet make_contact_set(const PatchSurface& surface);
 int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeState& probe, const PatchSurface& surface,
             const Eigen::VectorXd& x, const Eigen::VectorXd& v, ContactSet& set, Eigen::VectorXd& force);
 
-// Adds (h D_c + h^2 K_c) p into `out`, the contact's share of the implicit solver's matrix, with
-// `h` the time step (h = 0 and h2 = 1 give K_c p alone).
-void add_contact_product(const ContactSet& set, const PenaltyLaw& law, double h, double h2, const Eigen::VectorXd& p,
-                         Eigen::VectorXd& out);
+// Adds K_c p into `out` (3n each): the contacts' stiffness, the negated Jacobian of their forces
+// with respect to the node positions, for the implicit step's right-hand side. (The solver's
+// matrix carries the same blocks, with damping and the time step folded in: physics/grid_system.)
+void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out);
 
 }  // namespace echosim::contact

@@ -77,7 +77,7 @@ void step(const tissue::TissueModel& model, const PhysicsOptions& options, const
 
     // 3: integrate
     if (options.integrator == Integrator::implicit_euler) {
-        contact::add_contact_product(s.contacts, scene.penalty, 0.0, 1.0, s.v, s.stiffness_v);
+        contact::add_contact_stiffness_product(s.contacts, s.v, s.stiffness_v);
         right_hand_side(s, h);
         prepare_system(model, scene.penalty, s, h, s.system, *s.team);
         const CgResult cg = conjugate_gradient(options, s.grid, s.system, s.cg, *s.team);
