@@ -27,11 +27,11 @@ namespace echosim::io {
 namespace {
 
 using text::format_double;
+using text::max_header_line;
 using text::parse_double;
 using text::split_whitespace;
 using text::trim;
 
-constexpr std::size_t max_header_line = std::size_t(1) << 20;  // [bytes] a longer "line" is binary junk
 constexpr std::size_t zlib_chunk = std::size_t(1) << 20;        // [bytes] file reads and writes around zlib
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& why)

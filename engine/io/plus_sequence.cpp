@@ -29,11 +29,11 @@ namespace echosim::io {
 namespace {
 
 using text::format_double;
+using text::max_header_line;
 using text::parse_double;
 using text::split_whitespace;
 using text::trim;
 
-constexpr std::size_t max_header_line = std::size_t(1) << 20;  // [bytes] a longer "line" is binary junk
 constexpr std::string_view frame_prefix = "Seq_Frame";
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& why)

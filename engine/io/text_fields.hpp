@@ -46,6 +46,10 @@ inline std::string format_double(double v)
     return ec == std::errc() ? std::string(buf, end) : std::string("nan");
 }
 
+// The longest header line the text-header readers (NRRD, PLUS) accept [bytes]: a longer "line" is
+// binary junk, and reading on would only fill memory.
+inline constexpr std::size_t max_header_line = std::size_t(1) << 20;
+
 // One header line without its "\n" or "\r\n"; false at the end of the input. A line longer than
 // max_length calls too_long() (which throws): binary data where a header was expected.
 template <class TooLong>
