@@ -23,7 +23,7 @@ struct ReconstructFixture {
     ReconstructFixture()
     {
         const scene::LegModel leg;
-        echo::ProbeSpec spec;
+        echo::ScanSpec spec;
         spec.pixel_mm = 40.0 / width;
         spec.width_mm = 40.0;
         spec.depth_mm = spec.pixel_mm * height;

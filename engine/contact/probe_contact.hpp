@@ -21,12 +21,13 @@
 #include <Eigen/Geometry>
 
 #include "contact/patch_bvh.hpp"
+#include "core/probe_spec.hpp"
 
 namespace echosim::contact {
 
 struct ProbeGeometry {
-    double face_width = 40.0;      // along the array (probe x) [mm]
-    double face_thickness = 10.0;  // elevational (probe z) [mm]
+    double face_width = kLinearProbe.face_width_mm;          // along the array (probe x) [mm]
+    double face_thickness = kLinearProbe.face_thickness_mm;  // elevational (probe z) [mm]
     double body_depth = 60.0;      // how far the box extends behind the face (probe -y) [mm]
     // a real transducer's face is rounded at its rim: the pressure fades to zero over this distance
     // from the edge, so skin sliding past the edge feels no jump [mm]

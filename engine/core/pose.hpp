@@ -30,4 +30,12 @@ std::string format_pose(const Pose& pose);
 // The pose whose frame has the given axes (x lateral, y into the tissue), orthonormalised.
 Pose pose_from_axes(glm::vec3 origin, glm::vec3 x_lateral, glm::vec3 y_beam);
 
+// The probe at `pose` pushed `depth_mm` along its beam (+y, into the tissue); negative lifts it.
+inline Pose pressed_along_beam(const Pose& pose, double depth_mm)
+{
+    Pose p = pose;
+    p.position += float(depth_mm) * pose.axis_y();
+    return p;
+}
+
 }  // namespace echosim

@@ -93,7 +93,7 @@ std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
 
 }  // namespace
 
-BModeImage synthesize(const Medium& medium, const Pose& pose, const ProbeSpec& spec)
+BModeImage synthesize(const Medium& medium, const Pose& pose, const ScanSpec& spec)
 {
     BModeImage img;
     img.width = spec.columns();

@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/pose.hpp"
+#include "core/probe_spec.hpp"
 #include "echo/phantom.hpp"
 
 namespace echosim::echo {
@@ -35,11 +36,13 @@ public:
     virtual Tissue tissue_at(const glm::dvec3& world) const = 0;
 };
 
-struct ProbeSpec {
-    double width_mm = 40.0;
-    double depth_mm = 50.0;
+// The scanner's settings for one image: the probe's footprint and sound (core/probe_spec.hpp) and
+// how the image is formed from it.
+struct ScanSpec {
+    double width_mm = kLinearProbe.face_width_mm;
+    double depth_mm = kLinearProbe.image_depth_mm;
     double pixel_mm = 0.1;
-    double frequency_mhz = 10.0;
+    double frequency_mhz = kLinearProbe.frequency_mhz;
     double axial_fwhm_mm = 0.3;      // pulse length
     double lateral_fwhm_mm = 0.6;    // beam width at focus
     double elevational_fwhm_mm = 1.2;  // slice thickness, sampled by planes one scatterer apart
@@ -59,7 +62,7 @@ struct BModeImage {
     std::vector<std::uint8_t> labels;     // Tissue in the image plane
 };
 
-BModeImage synthesize(const Medium& medium, const Pose& probe, const ProbeSpec& spec);
+BModeImage synthesize(const Medium& medium, const Pose& probe, const ScanSpec& spec);
 
 // The phantom as a medium.
 class PhantomMedium : public Medium {

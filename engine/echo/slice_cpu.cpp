@@ -11,7 +11,7 @@ namespace echosim::echo {
 namespace {
 
 template <class Sample>
-std::vector<std::uint8_t> slice(const io::Volume& v, const Pose& pose, const ProbeSpec& spec, Sample&& sample)
+std::vector<std::uint8_t> slice(const io::Volume& v, const Pose& pose, const ScanSpec& spec, Sample&& sample)
 {
     const glm::dmat4 to_world = image_to_world(pose, spec);
     const glm::dmat3 to_index = glm::inverse(v.directions);
@@ -26,7 +26,7 @@ std::vector<std::uint8_t> slice(const io::Volume& v, const Pose& pose, const Pro
 
 }  // namespace
 
-std::vector<std::uint8_t> slice_grey(const io::Volume& v, const Pose& pose, const ProbeSpec& spec)
+std::vector<std::uint8_t> slice_grey(const io::Volume& v, const Pose& pose, const ScanSpec& spec)
 {
     const std::uint8_t* d = v.as<std::uint8_t>();
     return slice(v, pose, spec, [&](const glm::dvec3& p) -> std::uint8_t {
@@ -45,7 +45,7 @@ std::vector<std::uint8_t> slice_grey(const io::Volume& v, const Pose& pose, cons
     });
 }
 
-std::vector<std::uint8_t> slice_labels(const io::Volume& v, const Pose& pose, const ProbeSpec& spec)
+std::vector<std::uint8_t> slice_labels(const io::Volume& v, const Pose& pose, const ScanSpec& spec)
 {
     const std::uint8_t* d = v.as<std::uint8_t>();
     return slice(v, pose, spec, [&](const glm::dvec3& p) -> std::uint8_t {

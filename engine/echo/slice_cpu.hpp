@@ -12,8 +12,8 @@
 
 namespace echosim::echo {
 
-std::vector<std::uint8_t> slice_grey(const io::Volume& volume, const Pose& pose, const ProbeSpec& spec);
-std::vector<std::uint8_t> slice_labels(const io::Volume& labels, const Pose& pose, const ProbeSpec& spec);
+std::vector<std::uint8_t> slice_grey(const io::Volume& volume, const Pose& pose, const ScanSpec& spec);
+std::vector<std::uint8_t> slice_labels(const io::Volume& labels, const Pose& pose, const ScanSpec& spec);
 
 // Image similarity over the pixels where `mask` is non-zero (all when empty).
 double normalised_cross_correlation(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,

@@ -7,7 +7,7 @@
 
 namespace echosim::echo {
 
-glm::dmat4 image_to_world(const Pose& pose, const ProbeSpec& spec)
+glm::dmat4 image_to_world(const Pose& pose, const ScanSpec& spec)
 {
     const glm::dvec3 ax(pose.axis_x()), ay(pose.axis_y()), az(pose.axis_z()), o(pose.position);
     glm::dmat4 m(1.0);

@@ -25,7 +25,7 @@ struct SweepOptions {
     double tremor_mm = 0.3;              // standard deviation of the hand's wander
     double tremor_deg = 1.0;
     std::uint64_t seed = 1;
-    ProbeSpec spec;
+    ScanSpec spec;
 };
 
 struct TrackedSweep {
@@ -35,7 +35,7 @@ struct TrackedSweep {
 };
 
 // Pixel (column, row) of an image taken at `pose` to world mm.
-glm::dmat4 image_to_world(const Pose& pose, const ProbeSpec& spec);
+glm::dmat4 image_to_world(const Pose& pose, const ScanSpec& spec);
 
 TrackedSweep make_sweep(const scene::LegModel& leg, const Medium& medium, const SweepOptions& options,
                         const std::function<void(int done, int total)>& progress = {});

@@ -25,9 +25,8 @@ struct SpringResidual {
     bool operator()(const T* log_ab, T* residual) const
     {
         const T a = exp(log_ab[0]), b = exp(log_ab[1]);
-        const T denom = b - a * depth;
-        if (!(denom > T(0))) return false;
-        residual[0] = depth / denom - force;
+        if (!tissue::spring_holds(T(depth), a, b)) return false;
+        residual[0] = tissue::spring_force(T(depth), a, b) - force;
         return true;
     }
 };

@@ -56,7 +56,7 @@ double overlap(double lo0, double hi0, double lo1, double hi1) { return std::max
 
 }  // namespace
 
-std::vector<InteractionSample> prepare_interaction(const SampleMesh& mesh, const MeasurementSet& set, const ProbeFace& face)
+std::vector<InteractionSample> prepare_interaction(const SampleMesh& mesh, const MeasurementSet& set, const ProbeSpec& probe)
 {
     std::vector<InteractionSample> out;
     out.reserve(set.samples.size());
@@ -95,8 +95,8 @@ std::vector<InteractionSample> prepare_interaction(const SampleMesh& mesh, const
                 const bool rows_go_up = glm::dot(tangent(mesh, ri, ci, 1, 0, axis), elevation) > 0;
                 if (ri == 0) (rows_go_up ? z_lo : z_hi) = rows_go_up ? -beyond : beyond;
                 if (ri == SampleGrid::rows - 1) (rows_go_up ? z_hi : z_lo) = rows_go_up ? beyond : -beyond;
-                const double cover = overlap(x_lo, x_hi, -face.width / 2, face.width / 2) / cell_lat *
-                                     overlap(z_lo, z_hi, -face.thickness / 2, face.thickness / 2) / cell_elev;
+                const double cover = overlap(x_lo, x_hi, -probe.face_width_mm / 2, probe.face_width_mm / 2) / cell_lat *
+                                     overlap(z_lo, z_hi, -probe.face_thickness_mm / 2, probe.face_thickness_mm / 2) / cell_elev;
                 if (cover > 1e-9) under.push_back({i, std::max(0.0, glm::dot(d, axis)), cover});
             }
         }

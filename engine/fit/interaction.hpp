@@ -20,7 +20,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/probe_spec.hpp"
 #include "fit/measurements.hpp"
+#include "tissue/nonlinear_spring.hpp"
 #include "tissue/sample_grid.hpp"
 #include "tissue/tissue_model.hpp"
 
@@ -50,12 +52,9 @@ struct InteractionSample {
     std::vector<ContactTerm> contacts;
 };
 
-struct ProbeFace {
-    double width = 40.0;     // along the array, across the thigh [mm]
-    double thickness = 10.0; // elevational, along the thigh [mm]
-};
-
-std::vector<InteractionSample> prepare_interaction(const SampleMesh& mesh, const MeasurementSet& set, const ProbeFace& face = {});
+// `probe`: the pseudo-probe's face, its array across the thigh, its thickness along it.
+std::vector<InteractionSample> prepare_interaction(const SampleMesh& mesh, const MeasurementSet& set,
+                                                   const ProbeSpec& probe = kLinearProbe);
 
 // The model force for one prepared sample, with per-node (a, b) and lambda; false when a node's
 // spring would be compressed past its bottoming depth (the parameters are infeasible there).
@@ -67,9 +66,8 @@ bool interaction_force(const InteractionSample& s, const AB& ab, const T& lambda
         if (c.compression <= 0) continue;
         const T& a = ab(c.node, 0);
         const T& b = ab(c.node, 1);
-        const T denom = b - a * c.compression;
-        if (!(denom > T(0))) return false;
-        force += c.weight * c.cosine * c.compression / denom;
+        if (!tissue::spring_holds(T(c.compression), a, b)) return false;
+        force += c.weight * c.cosine * tissue::spring_force(T(c.compression), a, b);
     }
     return true;
 }

@@ -55,16 +55,17 @@ double ReferenceTissue::indenter_force(double depth, double u, double v) const
     return column_stress(depth, u, v) * area + shear * perimeter * depth;
 }
 
-double ReferenceTissue::probe_force(const scene::LegModel& leg, double depth, double u, double v) const
+double ReferenceTissue::probe_force(const SkinSurface& skin, double depth, double u, double v) const
 {
     if (depth <= 0) return 0;
     // the face, 9 x 3 sub-areas; each meets the skin where the curved thigh lies under it
-    const glm::dvec3 centre = leg.patch_point(float(u), float(v));
-    const glm::dvec3 inward = -glm::dvec3(leg.patch_normal(float(u), float(v)));
+    const glm::dvec3 centre = skin.patch_point(float(u), float(v));
+    const glm::dvec3 inward = -glm::dvec3(skin.patch_normal(float(u), float(v)));
     // patch extent [mm] to turn face offsets into patch coordinates
-    const double len_u = glm::length(glm::dvec3(leg.patch_point(float(u) + 0.01f, float(v)) - leg.patch_point(float(u) - 0.01f, float(v)))) / 0.02;
-    const double len_v = glm::length(glm::dvec3(leg.patch_point(float(u), float(v) + 0.01f) - leg.patch_point(float(u), float(v) - 0.01f))) / 0.02;
+    const double len_u = glm::length(glm::dvec3(skin.patch_point(float(u) + 0.01f, float(v)) - skin.patch_point(float(u) - 0.01f, float(v)))) / 0.02;
+    const double len_v = glm::length(glm::dvec3(skin.patch_point(float(u), float(v) + 0.01f) - skin.patch_point(float(u), float(v) - 0.01f))) / 0.02;
     constexpr int nx = 9, nz = 3;
+    const double probe_width = probe.face_width_mm, probe_thickness = probe.face_thickness_mm;
     const double cell_area = probe_width * probe_thickness / (nx * nz);
     double force = 0;
     for (int ix = 0; ix < nx; ++ix) {
@@ -72,14 +73,14 @@ double ReferenceTissue::probe_force(const scene::LegModel& leg, double depth, do
         for (int iz = 0; iz < nz; ++iz) {
             const double z = -probe_thickness / 2 + probe_thickness * (iz + 0.5) / nz;  // along it (u)
             const double uq = u + z / len_u, vq = v + x / len_v;
-            const double gap = glm::dot(glm::dvec3(leg.patch_point(float(uq), float(vq))) - centre, inward);
+            const double gap = glm::dot(glm::dvec3(skin.patch_point(float(uq), float(vq))) - centre, inward);
             force += column_stress(depth - gap, uq, vq) * cell_area;
         }
     }
     return force + shear * 2.0 * (probe_width + probe_thickness) * depth;
 }
 
-MeasurementSet simulate_campaign(const scene::LegModel& leg, const ReferenceTissue& tissue, const CampaignOptions& o)
+MeasurementSet simulate_campaign(const SkinSurface& skin, const ReferenceTissue& tissue, const CampaignOptions& o)
 {
     using tissue::SampleGrid;
     std::mt19937_64 rng(o.seed);
@@ -101,8 +102,8 @@ MeasurementSet simulate_campaign(const scene::LegModel& leg, const ReferenceTiss
     };
     for (int p = 0; p < SampleGrid::count; ++p) {
         const double u = SampleGrid::u(SampleGrid::row_of(p)), v = SampleGrid::v(SampleGrid::col_of(p));
-        const glm::dvec3 position = leg.patch_point(float(u), float(v));
-        const glm::dvec3 normal = glm::normalize(glm::dvec3(leg.patch_normal(float(u), float(v))));
+        const glm::dvec3 position = skin.patch_point(float(u), float(v));
+        const glm::dvec3 normal = glm::normalize(glm::dvec3(skin.patch_normal(float(u), float(v))));
         for (ProbeKind probe : {ProbeKind::indenter, ProbeKind::probe}) {
             const double limit = probe == ProbeKind::indenter ? o.indenter_limit_N : o.probe_limit_N;
             // a spoiled point's motion hits one of its two sequences, from a random step on
@@ -117,7 +118,7 @@ MeasurementSet simulate_campaign(const scene::LegModel& leg, const ReferenceTiss
                 const double depth = o.step_mm * k;
                 const double true_depth = std::max(0.0, depth - (k >= shift_from ? shift : 0.0));
                 const double f = probe == ProbeKind::indenter ? tissue.indenter_force(true_depth, u, v)
-                                                              : tissue.probe_force(leg, true_depth, u, v);
+                                                              : tissue.probe_force(skin, true_depth, u, v);
                 if (f > limit) break;
                 const double measured = std::max(0.0, f * (1.0 + o.relative_noise * gauss(rng)) + o.absolute_noise_N * gauss(rng));
                 set.samples.push_back({p, probe, position, normal, depth, measured});

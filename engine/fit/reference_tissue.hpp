@@ -17,7 +17,8 @@
 #include <cstdint>
 
 #include "fit/measurements.hpp"
-#include "scene/leg.hpp"
+#include "core/probe_spec.hpp"
+#include "core/skin_surface.hpp"
 
 namespace echosim::fit {
 
@@ -36,7 +37,7 @@ struct ReferenceTissue {
     // the tip, which grows as the skin wraps further up the pyramid
     double indenter_tip_area = 120.0;   // [mm^2] effective area at first contact
     double indenter_area_growth = 1.5;  // [mm^2 / mm]
-    double probe_width = 40.0, probe_thickness = 10.0;  // the pseudo-probe's face [mm]
+    ProbeSpec probe = kLinearProbe;  // the pseudo-probe has a real probe's face
 
     // The layers at patch coordinates (u, v).
     void layers(double u, double v, Layer out[3]) const;
@@ -45,7 +46,7 @@ struct ReferenceTissue {
 
     // Force [N] on each probe pushed `depth` [mm] along the inward normal at patch point (u, v).
     double indenter_force(double depth, double u, double v) const;
-    double probe_force(const scene::LegModel& leg, double depth, double u, double v) const;
+    double probe_force(const SkinSurface& skin, double depth, double u, double v) const;
 };
 
 struct CampaignOptions {
@@ -61,6 +62,6 @@ struct CampaignOptions {
 
 // The protocol of §3.1 on the reference: 64 points, two probes, 2 mm steps up to the force limit.
 // Throws if a point yields fewer than 6 samples (the protocol's minimum).
-MeasurementSet simulate_campaign(const scene::LegModel& leg, const ReferenceTissue& tissue, const CampaignOptions& options);
+MeasurementSet simulate_campaign(const SkinSurface& skin, const ReferenceTissue& tissue, const CampaignOptions& options);
 
 }  // namespace echosim::fit

@@ -178,13 +178,13 @@ Pose LegModel::probe_rest_pose(float u, float v) const
     return pose_from_axes(patch_point(u, v), around, -patch_normal(u, v));
 }
 
-Mesh make_linear_probe()
+Mesh make_linear_probe(const ProbeSpec& spec)
 {
     // a tube along -y: lens face, head, tapered neck, grip, strain relief and a cable stub
     Tube t;
     t.e1 = {1, 0, 0};
     t.e2 = {0, 0, 1};
-    const float hw = kProbeFaceWidthMm / 2, ht = kProbeFaceThicknessMm / 2;
+    const float hw = float(spec.face_width_mm / 2), ht = float(spec.face_thickness_mm / 2);
     auto st = [](float y, float rx, float rz, float n) { return Station{{0, y, 0}, rx, rx, rz, rz, n}; };
     t.stations = {st(0, hw, ht, 6), st(-4, hw + 1, ht + 2, 5), st(-22, hw + 1, ht + 5, 4), st(-40, 16, 12, 3),
                   st(-75, 14, 13, 2.5f), st(-105, 15, 14, 2.5f), st(-118, 8, 8, 2), st(-135, 4, 4, 2), st(-190, 3.5f, 3.5f, 2)};

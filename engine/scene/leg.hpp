@@ -8,6 +8,8 @@
 #pragma once
 
 #include "core/pose.hpp"
+#include "core/probe_spec.hpp"
+#include "core/skin_surface.hpp"
 #include "scene/mesh.hpp"
 #include "scene/tube.hpp"
 
@@ -29,7 +31,7 @@ struct ExamPatch {
     float theta0 = 0, theta1 = 0;  // extent around it [rad]
 };
 
-class LegModel {
+class LegModel : public SkinSurface {
 public:
     explicit LegModel(const LegOptions& options = {});
 
@@ -40,8 +42,8 @@ public:
 
     // The skin at (u, v) in [0,1]^2 of the patch (u along the limb from superior, v around from
     // medial towards anterior): its point [mm] and outward unit normal.
-    glm::vec3 patch_point(float u, float v) const;
-    glm::vec3 patch_normal(float u, float v) const;
+    glm::vec3 patch_point(float u, float v) const override;
+    glm::vec3 patch_normal(float u, float v) const override;
 
     // A probe resting on the skin at (u, v) of the patch in transverse orientation: the array
     // across the thigh, the beam along the inward normal.
@@ -55,10 +57,7 @@ private:
 };
 
 // The linear vascular probe in its own frame (origin at the centre of the face, +x along the array,
-// +y into the tissue, so the body extends towards -y): a face of 40 x 10 mm (x by z).
-Mesh make_linear_probe();
-
-inline constexpr float kProbeFaceWidthMm = 40.0f;
-inline constexpr float kProbeFaceThicknessMm = 10.0f;
+// +y into the tissue, so the body extends towards -y), its face the size `spec` gives (x by z).
+Mesh make_linear_probe(const ProbeSpec& spec = kLinearProbe);
 
 }  // namespace echosim::scene

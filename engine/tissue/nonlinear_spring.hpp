@@ -16,6 +16,14 @@ T spring_force(const T& compression, const T& a, const T& b)
     return compression / (b - a * compression);
 }
 
+// Whether the spring can be compressed by `compression` at all: short of bottoming out, where
+// spring_force is finite and positive. The fit asks it of trial parameters.
+template <class T>
+bool spring_holds(const T& compression, const T& a, const T& b)
+{
+    return b - a * compression > T(0);
+}
+
 // dF/dc = b / (b - a c)^2: the tangent stiffness the implicit integrator needs [N/mm].
 template <class T>
 T spring_stiffness(const T& compression, const T& a, const T& b)

@@ -7,11 +7,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "scene/leg.hpp"
 
 namespace echosim::tissue {
 
-TissueModel build_tissue_model(const scene::LegModel& leg, const SampleParameters& params, int refine)
+TissueModel build_tissue_model(const SkinSurface& skin, const SampleParameters& params, int refine)
 {
     if (refine < 1 || refine > 64) throw std::invalid_argument("tissue model refinement " + std::to_string(refine) + " outside 1..64");
     TissueModel m;
@@ -39,8 +38,8 @@ TissueModel build_tissue_model(const scene::LegModel& leg, const SampleParameter
         for (int c = 0; c < m.cols; ++c) {
             const std::uint32_t k = m.node(r, c);
             const double u = u0 + (u1 - u0) * r / (m.rows - 1), v = v0 + (v1 - v0) * c / (m.cols - 1);
-            m.positions[k] = glm::dvec3(leg.patch_point(float(u), float(v)));
-            m.normals[k] = glm::normalize(glm::dvec3(leg.patch_normal(float(u), float(v))));
+            m.positions[k] = glm::dvec3(skin.patch_point(float(u), float(v)));
+            m.normals[k] = glm::normalize(glm::dvec3(skin.patch_normal(float(u), float(v))));
             m.boundary[k] = r == 0 || c == 0 || r == m.rows - 1 || c == m.cols - 1;
 
             // bilinear interpolation between the four surrounding sample points, in 1/b and b/a

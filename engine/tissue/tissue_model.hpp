@@ -21,11 +21,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/skin_surface.hpp"
 #include "tissue/sample_grid.hpp"
-
-namespace echosim::scene {
-class LegModel;
-}
 
 namespace echosim::tissue {
 
@@ -76,6 +73,7 @@ struct TissueModel {
 // 1.05 g/cm^3 over a 10 mm layer. Not identifiable from quasi-static data; a stated assumption.
 inline constexpr double kSurfaceMassPerArea = 1.05e-6 * 10.0;
 
-TissueModel build_tissue_model(const scene::LegModel& leg, const SampleParameters& params, int refine);
+// The model on the sample area of `skin`'s exam patch at refinement `refine` (1..64).
+TissueModel build_tissue_model(const SkinSurface& skin, const SampleParameters& params, int refine);
 
 }  // namespace echosim::tissue

@@ -31,7 +31,7 @@ double stddev(const std::vector<double>& v)
 TEST(BMode, SpeckleIsFullyDevelopedInHomogeneousTissue)
 {
     // Rayleigh statistics of the envelope: mean / standard deviation = sqrt(pi / (4 - pi)) = 1.913
-    ProbeSpec spec;
+    ScanSpec spec;
     spec.texture = false;
     spec.tgc_db_per_cm_mhz = 0.9;  // exactly the muscle's attenuation: no depth trend
     const BModeImage img = synthesize(Homogeneous{}, leg().probe_rest_pose(0.5f, 0.5f), spec);
@@ -47,7 +47,7 @@ TEST(BMode, SpeckleIsFixedInTheBody)
     // the same scatterers seen from a probe moved 0.05 mm: nearly the same image; moved 4 mm
     // along the thigh (beyond the beam's thickness): unrelated speckle
     const Homogeneous medium;
-    ProbeSpec spec;
+    ScanSpec spec;
     spec.texture = false;
     spec.depth_mm = 20;
     const Pose pose = leg().probe_rest_pose(0.5f, 0.5f);
@@ -91,7 +91,7 @@ double tissue_mean(const BModeImage& img, Tissue t)
 TEST(BMode, VesselsAreAnechoicAndThrombiAreNot)
 {
     const Pose pose = leg().probe_rest_pose(0.5f, 0.5f);
-    const ProbeSpec spec;
+    const ScanSpec spec;
     const BModeImage healthy = synthesize(PhantomMedium(Phantom(leg(), Case::healthy)), pose, spec);
     const BModeImage acute = synthesize(PhantomMedium(Phantom(leg(), Case::dvt_acute)), pose, spec);
     const BModeImage chronic = synthesize(PhantomMedium(Phantom(leg(), Case::dvt_chronic)), pose, spec);
@@ -109,7 +109,7 @@ TEST(BMode, VesselsAreAnechoicAndThrombiAreNot)
 TEST(BMode, BoneCastsAShadow)
 {
     const Phantom phantom(leg(), Case::healthy);
-    ProbeSpec spec;
+    ScanSpec spec;
     spec.depth_mm = 60;
     const BModeImage img = synthesize(PhantomMedium(phantom), leg().probe_rest_pose(0.5f, 0.5f), spec);
     // in each column that meets the femur, the echo 2 to 6 mm below the cortex's top is far weaker

@@ -135,11 +135,11 @@ protected:
     static inline Phantom* phantom_ = nullptr;
     static inline io::Volume* volume_ = nullptr;
     static inline io::Volume* labels_ = nullptr;
-    static inline ProbeSpec spec_;
+    static inline ScanSpec spec_;
 };
 
 // centroid and equivalent diameter [mm] of one tissue in an image
-std::pair<glm::dvec2, double> blob(const std::vector<std::uint8_t>& labels, Tissue t, const ProbeSpec& spec)
+std::pair<glm::dvec2, double> blob(const std::vector<std::uint8_t>& labels, Tissue t, const ScanSpec& spec)
 {
     glm::dvec2 sum(0.0);
     double n = 0;

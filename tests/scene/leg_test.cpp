@@ -62,8 +62,8 @@ TEST(LinearProbe, FaceIs40By10Millimetres)
             lo = glm::min(lo, v.position);
             hi = glm::max(hi, v.position);
         }
-    EXPECT_NEAR(hi.x - lo.x, kProbeFaceWidthMm, 0.5f);
-    EXPECT_NEAR(hi.z - lo.z, kProbeFaceThicknessMm, 0.5f);
+    EXPECT_NEAR(hi.x - lo.x, 40.0f, 0.5f);
+    EXPECT_NEAR(hi.z - lo.z, 10.0f, 0.5f);
     // the body extends away from the tissue
     EXPECT_LT(bounds(probe).min.y, -100.0f);
     EXPECT_LE(bounds(probe).max.y, 1e-4f);

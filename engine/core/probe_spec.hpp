@@ -1,0 +1,21 @@
+// The linear vascular probe echosim simulates (DESIGN.md §2, "Probe frame"), one source for every
+// part that needs its size or its sound: the scene draws its face, the contact presses it, the fit's
+// pseudo-probe measures with it, the B-mode synthesis and the image pipeline image with it.
+//
+// Probe frame: origin at the centre of the transducer face, +x lateral along the array (the image
+// width), +y into the tissue along the beam (the image depth), +z elevational = x cross y.
+#pragma once
+
+namespace echosim {
+
+struct ProbeSpec {
+    double face_width_mm = 40.0;     // the face along the array (probe x); also the image width
+    double face_thickness_mm = 10.0; // the face across the array (probe z)
+    double image_depth_mm = 50.0;    // how deep the image reaches along the beam (probe y)
+    double frequency_mhz = 10.0;     // centre frequency of the transmitted pulse
+};
+
+// The 7.5-12 MHz linear vascular probe of the compression exam.
+inline constexpr ProbeSpec kLinearProbe{};
+
+}  // namespace echosim
