@@ -21,7 +21,7 @@ void render_frame(benchmark::State& state, RenderFixture& f, std::uint32_t width
     gpu::OffscreenPresenter presenter(f.ctx, {width, height});
     gpu::Renderer renderer(f.ctx, gpu::OffscreenPresenter::kFormat, f.scene.meshes());
     io::RgbaImage image;
-    const gpu::FrameView view = f.scene.frame_view();
+    const gpu::FrameView view = f.scene.frame_view();  // the patch at rest: the session is not advanced
     presenter.render(renderer, view, readback ? &image : nullptr);  // warm-up: first-use costs stay out
     for (auto _ : state) presenter.render(renderer, view, readback ? &image : nullptr);
     state.counters["width"] = width;

@@ -8,10 +8,9 @@
 #include <exception>
 
 #include "app/commands.hpp"
+#include "app/default_scene.hpp"
 #include "app/gpu_args.hpp"
 #include "app/headless.hpp"
-#include "app/patch_deformer.hpp"
-#include "app/simulation.hpp"
 
 namespace echosim::app {
 namespace {
@@ -37,7 +36,7 @@ void apply_camera(const std::string& text, DefaultScene& scene)
     if (!(scene.camera.distance > 0)) throw std::invalid_argument("distance must be positive");
     if (fields.size() == 4) {
         if (fields[3] != "probe") throw std::invalid_argument("the fourth field can only be 'probe'");
-        scene.camera.target = scene.probe_pose.position;
+        scene.camera.target = scene.session.probe().rest.position;
     } else if (fields.size() == 6) {
         scene.camera.target = {number(3, "x"), number(4, "y"), number(5, "z")};
     }
@@ -49,16 +48,15 @@ int run_render(const RenderArgs& args)
 {
     // check what the user gave before spending time on Vulkan
     if (!output_folder_exists("render", "--out", args.out)) return kExitBadInput;
-    DefaultScene scene;
+    DefaultScene scene;  // the session on the lock-step clock: only what is asked of it is simulated
     if (!args.pose.empty()) {
         try {
-            scene.probe_pose = parse_pose(args.pose);
+            scene.session.place_probe({parse_pose(args.pose), 0.0});
         } catch (const std::invalid_argument& e) {
             std::fprintf(stderr, "echosim render: --pose: %s\n", e.what());
             return kExitBadInput;
         }
     }
-
     if (!args.camera.empty()) {
         try {
             apply_camera(args.camera, scene);
@@ -69,24 +67,16 @@ int run_render(const RenderArgs& args)
     }
 
     const auto start = std::chrono::steady_clock::now();
-    double force = 0;
-    if (args.press_mm >= 0) {
-        // the tissue simulated headless, in lock-step, until it settles under the pressed probe
-        const tissue::TissueModel model = load_simulation_model(scene.leg);
-        physics::PhysicsRunner runner(model, physics::PhysicsOptions{});
-        press_and_settle(runner, scene.probe_pose, args.press_mm);
-        const physics::SurfaceSnapshot& snap = runner.latest();
-        PatchDeformer(scene.leg, model).apply(snap.positions, scene.patch);
-        scene.probe_pose.position += float(args.press_mm) * scene.probe_pose.axis_y();
-        force = snap.probe_force_N;
-        if (snap.resets > 0) std::fprintf(stderr, "echosim render: the tissue simulation was reset %d times\n", snap.resets);
-    }
-    const HeadlessFrame frame = render_headless(context_options(args.gpu), scene, args.width, args.height);
+    if (args.press_mm >= 0) scene.session.press_and_settle(scene.session.probe().rest, args.press_mm);
+    const session::SessionView& state = scene.session.view();
+    if (state.resets > 0) std::fprintf(stderr, "echosim render: the tissue simulation was reset %d times\n", state.resets);
+    const HeadlessFrame frame = render_headless(context_options(args.gpu), scene.meshes(), scene.frame_view(), args.width, args.height);
     io::write_png(args.out, frame.image);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("echosim render: wrote %s (%ux%u) on %s in %.0f ms\n", args.out.c_str(), frame.image.width,
                 frame.image.height, frame.device.c_str(), ms);
-    if (args.press_mm >= 0) std::printf("echosim render: probe pressed %.1f mm, tissue pushes back %.2f N\n", args.press_mm, force);
+    if (args.press_mm >= 0)
+        std::printf("echosim render: probe pressed %.1f mm, tissue pushes back %.2f N\n", args.press_mm, state.probe_force_N);
     if (frame.validation_messages > 0) {
         std::fprintf(stderr, "echosim render: Vulkan validation reported %u message(s)\n", frame.validation_messages);
         return kExitValidation;

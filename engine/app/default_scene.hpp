@@ -1,27 +1,31 @@
-// The scene every part draws by default: the leg, the exam patch at rest, the probe resting on the
-// patch centre in transverse orientation, and the default camera. Shared by the commands, the tests
-// and the benchmarks, so they all look at the same thing.
+// The scene every part draws by default: a simulator session (the leg, the exam patch as the tissue
+// leaves it, the probe where the session holds it: on the patch centre in transverse orientation
+// until moved) seen by the default camera. Shared by the commands, the tests and the benchmarks, so
+// they all look at the same thing.
 #pragma once
 
-#include <vector>
-
-#include "core/pose.hpp"
 #include "gpu/renderer.hpp"
 #include "scene/camera.hpp"
 #include "scene/leg.hpp"
 #include "scene/mesh.hpp"
+#include "session/session.hpp"
 
 namespace echosim::app {
 
 struct DefaultScene {
-    scene::LegModel leg;
-    scene::Mesh probe = scene::make_linear_probe();
-    std::vector<scene::Vertex> patch = leg.patch().rest.vertices;  // current patch shape
-    Pose probe_pose = leg.probe_rest_pose(0.5f, 0.5f);
+    session::Session session;
+    scene::Mesh probe_mesh = scene::make_linear_probe();
     scene::OrbitCamera camera;
 
-    gpu::SceneMeshes meshes() const { return {leg.static_mesh(), leg.patch().rest, probe}; }
-    gpu::FrameView frame_view() const { return {camera, patch, probe_pose.matrix(), true}; }
+    explicit DefaultScene(const session::SessionOptions& options = {}) : session(options) {}
+
+    gpu::SceneMeshes meshes() const { return {session.leg().static_mesh(), session.leg().patch().rest, probe_mesh}; }
+    // the session's newest state, from the camera
+    gpu::FrameView frame_view()
+    {
+        const session::SessionView& v = session.view();
+        return {camera, *v.patch, v.probe.matrix(), true};
+    }
 };
 
 }  // namespace echosim::app

@@ -2,11 +2,10 @@
 // `echosim render`, the render tests and the benchmarks.
 #pragma once
 
-#include <optional>
 #include <string>
 
-#include "app/default_scene.hpp"
 #include "gpu/context.hpp"
+#include "gpu/renderer.hpp"
 #include "io/png.hpp"
 
 namespace echosim::app {
@@ -14,10 +13,10 @@ namespace echosim::app {
 struct HeadlessFrame {
     io::RgbaImage image;
     std::string device;                   // the Vulkan device that drew it
-    std::uint32_t validation_messages = 0;
+    std::uint32_t validation_messages = 0;  // counted until the device was destroyed (leaks included)
 };
 
-HeadlessFrame render_headless(const gpu::ContextOptions& options, const DefaultScene& scene, std::uint32_t width,
-                              std::uint32_t height);
+HeadlessFrame render_headless(const gpu::ContextOptions& options, const gpu::SceneMeshes& meshes, const gpu::FrameView& view,
+                              std::uint32_t width, std::uint32_t height);
 
 }  // namespace echosim::app

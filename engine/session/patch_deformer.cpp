@@ -1,9 +1,9 @@
-#include "app/patch_deformer.hpp"
+#include "session/patch_deformer.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace echosim::app {
+namespace echosim::session {
 
 PatchDeformer::PatchDeformer(const scene::LegModel& leg, const tissue::TissueModel& model) : rest_(leg.patch().rest)
 {
@@ -47,4 +47,4 @@ void PatchDeformer::apply(std::span<const float> positions, std::vector<scene::V
     patch = scratch_.vertices;
 }
 
-}  // namespace echosim::app
+}  // namespace echosim::session

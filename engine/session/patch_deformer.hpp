@@ -12,7 +12,7 @@
 #include "scene/leg.hpp"
 #include "tissue/tissue_model.hpp"
 
-namespace echosim::app {
+namespace echosim::session {
 
 class PatchDeformer {
 public:
@@ -33,4 +33,4 @@ private:
     mutable scene::Mesh scratch_;
 };
 
-}  // namespace echosim::app
+}  // namespace echosim::session

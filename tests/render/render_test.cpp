@@ -26,8 +26,8 @@ std::filesystem::path reference(const char* name) { return std::filesystem::path
 
 TEST(Render, DefaultViewMatchesReference)
 {
-    const app::DefaultScene scene;
-    const app::HeadlessFrame frame = app::render_headless(test::lavapipe_options(), scene, kWidth, kHeight);
+    app::DefaultScene scene;
+    const app::HeadlessFrame frame = app::render_headless(test::lavapipe_options(), scene.meshes(), scene.frame_view(), kWidth, kHeight);
     EXPECT_EQ(frame.validation_messages, 0u);
     const auto path = reference("default_view.png");
     if (const char* update = std::getenv("ECHOSIM_UPDATE_REFERENCES"); update && *update == '1') {
@@ -95,7 +95,8 @@ TEST_F(SceneRender, ProbeIsDrawnWhereItsPoseSays)
     view.show_probe = false;
     const auto without = draw(view);
     // the probe's body is 190 mm long: around 40 px at this distance and size
-    const glm::vec2 at = project(scene_.probe_pose.position + scene_.probe_pose.axis_y() * -60.0f);
+    const Pose probe = scene_.session.view().probe;
+    const glm::vec2 at = project(probe.position + probe.axis_y() * -60.0f);
     const auto [all, near] = changes(with, without, at, 60.0f);
     EXPECT_GT(all, 150);
     EXPECT_GT(double(near) / all, 0.95) << "the probe was drawn away from its pose";
@@ -105,19 +106,21 @@ TEST_F(SceneRender, PatchDeformationIsDrawn)
 {
     const auto rest = draw(scene_.frame_view());
     // push the patch's middle 12 mm into the thigh, as the probe will
-    const auto& patch = scene_.leg.patch();
+    const auto& patch = scene_.session.leg().patch();
+    std::vector<scene::Vertex> pushed = patch.rest.vertices;
     for (int i = 0; i < patch.rows; ++i)
         for (int j = 0; j < patch.cols; ++j) {
             const float u = float(i) / float(patch.rows - 1) - 0.5f, v = float(j) / float(patch.cols - 1) - 0.5f;
-            auto& vert = scene_.patch[std::size_t(i * patch.cols + j)];
+            auto& vert = pushed[std::size_t(i * patch.cols + j)];
             vert.position -= vert.normal * (12.0f * std::max(0.0f, 1.0f - 4.0f * (u * u + v * v)));
         }
     gpu::FrameView view = scene_.frame_view();
+    view.patch_vertices = pushed;
     view.show_probe = false;
     const auto pressed = draw(view);
-    view.patch_vertices = scene_.leg.patch().rest.vertices;
+    view.patch_vertices = patch.rest.vertices;
     const auto rest_no_probe = draw(view);
-    const glm::vec2 centre = project(scene_.leg.probe_rest_pose(0.5f, 0.5f).position);
+    const glm::vec2 centre = project(scene_.session.leg().probe_rest_pose(0.5f, 0.5f).position);
     const auto [all, near] = changes(pressed, rest_no_probe, centre, 60.0f);
     EXPECT_GT(all, 50);
     EXPECT_GT(double(near) / all, 0.95);

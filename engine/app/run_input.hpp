@@ -1,0 +1,39 @@
+// What the window's loop takes from its input each frame, whoever produces it: the mouse and
+// keyboard (window_input.hpp) or a script (exercise_script.hpp, the smoke test's). Sources are
+// polled on the main thread, once a frame, after GLFW's events.
+#pragma once
+
+#include <optional>
+
+#include <glm/vec2.hpp>
+
+namespace echosim::gpu {
+class Window;
+}
+
+namespace echosim::app {
+
+struct RunInput {
+    // the camera
+    float orbit_yaw = 0, orbit_pitch = 0;  // [rad]
+    float zoom = 1;                        // distance factor (< 1 closer)
+    // the probe: a slide over the exam patch (fractions of its extent) and a press along the beam
+    float slide_u = 0, slide_v = 0;
+    double press_change_mm = 0;
+    std::optional<double> press_mm;  // an absolute press, which wins over the change [mm]
+    // the window
+    bool toggle_fullscreen = false;
+    std::optional<bool> fullscreen;
+    std::optional<glm::ivec2> resize;  // [px]
+    bool minimise = false, restore = false;
+    bool quit = false;
+};
+
+class InputSource {
+public:
+    virtual ~InputSource() = default;
+    // The input since the last poll; `dt` is the frame's duration [s].
+    virtual RunInput poll(gpu::Window& window, float dt) = 0;
+};
+
+}  // namespace echosim::app

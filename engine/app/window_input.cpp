@@ -1,0 +1,76 @@
+#include "app/window_input.hpp"
+
+#include <cmath>
+
+#include <GLFW/glfw3.h>
+
+#include "gpu/window.hpp"
+
+namespace echosim::app {
+namespace {
+
+WindowInput::Pending& pending_of(GLFWwindow* w) { return *static_cast<WindowInput::Pending*>(glfwGetWindowUserPointer(w)); }
+
+bool pressed(GLFWwindow* w, int key) { return glfwGetKey(w, key) == GLFW_PRESS; }
+
+}  // namespace
+
+WindowInput::WindowInput(gpu::Window& window) : window_(window.handle())
+{
+    glfwSetWindowUserPointer(window_, &pending_);
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* win, int button, int action, int) {
+        Pending& k = pending_of(win);
+        if (button == GLFW_MOUSE_BUTTON_LEFT) k.dragging = action == GLFW_PRESS;
+        if (button == GLFW_MOUSE_BUTTON_RIGHT) k.moving_probe = action == GLFW_PRESS;
+        glfwGetCursorPos(win, &k.last_x, &k.last_y);
+    });
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* win, double x, double y) {
+        Pending& k = pending_of(win);
+        if (k.dragging) k.drag_x += x - k.last_x, k.drag_y += y - k.last_y;
+        if (k.moving_probe) k.probe_x += x - k.last_x, k.probe_y += y - k.last_y;
+        k.last_x = x;
+        k.last_y = y;
+    });
+    glfwSetScrollCallback(window_, [](GLFWwindow* win, double, double dy) {
+        Pending& k = pending_of(win);
+        (pressed(win, GLFW_KEY_LEFT_SHIFT) || pressed(win, GLFW_KEY_RIGHT_SHIFT) ? k.press_scroll : k.scroll) += dy;
+    });
+    glfwSetKeyCallback(window_, [](GLFWwindow* win, int key, int, int action, int) {
+        if (action != GLFW_PRESS) return;
+        Pending& k = pending_of(win);
+        if (key == GLFW_KEY_ESCAPE) k.quit = true;
+        if (key == GLFW_KEY_F11 || (key == GLFW_KEY_F && !k.dragging)) k.toggle_fullscreen = true;
+    });
+}
+
+WindowInput::~WindowInput()
+{
+    glfwSetMouseButtonCallback(window_, nullptr);
+    glfwSetCursorPosCallback(window_, nullptr);
+    glfwSetScrollCallback(window_, nullptr);
+    glfwSetKeyCallback(window_, nullptr);
+    glfwSetWindowUserPointer(window_, nullptr);
+}
+
+RunInput WindowInput::poll(gpu::Window&, float dt)
+{
+    Pending& k = pending_;
+    RunInput in;
+    in.orbit_yaw = float(k.drag_x) * -0.005f;
+    in.orbit_pitch = float(k.drag_y) * 0.005f;
+    in.zoom = float(std::pow(0.9, k.scroll));
+    // arrows slide the probe over the patch at 0.4 of the patch a second; right-drag: down the
+    // screen moves the probe down the thigh, across moves it around
+    const float step = 0.4f * dt;
+    in.slide_u = step * float(pressed(window_, GLFW_KEY_DOWN) - pressed(window_, GLFW_KEY_UP)) + 0.002f * float(k.probe_y);
+    in.slide_v = step * float(pressed(window_, GLFW_KEY_RIGHT) - pressed(window_, GLFW_KEY_LEFT)) + 0.002f * float(k.probe_x);
+    // W/S press the probe in and out at 15 mm/s; Shift+wheel 1 mm a notch
+    in.press_change_mm = 15.0 * dt * double(pressed(window_, GLFW_KEY_W) - pressed(window_, GLFW_KEY_S)) + k.press_scroll;
+    in.toggle_fullscreen = k.toggle_fullscreen;
+    in.quit = k.quit;
+    k.drag_x = k.drag_y = k.probe_x = k.probe_y = k.scroll = k.press_scroll = 0;
+    k.toggle_fullscreen = k.quit = false;
+    return in;
+}
+
+}  // namespace echosim::app

@@ -1,0 +1,38 @@
+// The mouse and keyboard of the simulator's window: left-drag orbits the camera, the wheel zooms,
+// right-drag or the arrow keys slide the probe over the patch, W/S or Shift+wheel press it in and
+// out, F11 (or F) toggles fullscreen, Esc quits. GLFW's callbacks collect what happened between two
+// polls; main thread only (GLFW's rule).
+#pragma once
+
+#include "app/run_input.hpp"
+
+struct GLFWwindow;
+
+namespace echosim::app {
+
+class WindowInput : public InputSource {
+public:
+    explicit WindowInput(gpu::Window& window);  // installs the callbacks
+    ~WindowInput() override;
+    WindowInput(const WindowInput&) = delete;
+    WindowInput& operator=(const WindowInput&) = delete;
+
+    RunInput poll(gpu::Window& window, float dt) override;
+
+    // what the callbacks collect between polls
+    struct Pending {
+        bool dragging = false;        // left button: orbit the camera
+        bool moving_probe = false;    // right button: slide the probe over the patch
+        double last_x = 0, last_y = 0;
+        double drag_x = 0, drag_y = 0;    // camera drag [px]
+        double probe_x = 0, probe_y = 0;  // probe drag [px]
+        double scroll = 0, press_scroll = 0;  // wheel notches: zoom, or with Shift the press
+        bool toggle_fullscreen = false, quit = false;
+    };
+
+private:
+    GLFWwindow* window_;
+    Pending pending_;
+};
+
+}  // namespace echosim::app

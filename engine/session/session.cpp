@@ -1,0 +1,81 @@
+#include "session/session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace echosim::session {
+
+Session::Session(const SessionOptions& options)
+    : options_(options), model_(load_simulation_model(leg_, options.refine)), physics_(model_, options.physics),
+      deformer_(leg_, model_), patch_(leg_.patch().rest.vertices)
+{
+    probe_.rest = leg_.probe_rest_pose(0.5f, 0.5f);
+    view_.patch = &patch_;
+    view_.probe = probe_.face();
+    if (options_.clock == Clock::real_time) physics_.start();
+}
+
+Session::~Session() { stop(); }
+
+void Session::stop() { physics_.stop(); }
+
+void Session::place_probe(const ProbePlacement& placement)
+{
+    if (!(placement.press_mm >= 0)) throw std::invalid_argument("probe press " + std::to_string(placement.press_mm) + " mm: must be >= 0");
+    probe_ = placement;
+}
+
+void Session::place_probe_on_patch(float u, float v, double press_mm)
+{
+    place_probe({leg_.probe_rest_pose(u, v), press_mm});
+}
+
+void Session::advance(double dt)
+{
+    if (!(dt > 0)) throw std::invalid_argument("Session::advance by " + std::to_string(dt) + " s: must be > 0");
+    // the press speed along the beam is what the contact's damping feels; sliding is left to the
+    // contact's own velocity estimate
+    const Pose face = probe_.face();
+    physics::ProbeCommand c;
+    c.active = true;
+    c.orientation = Eigen::Quaterniond(face.orientation.w, face.orientation.x, face.orientation.y, face.orientation.z);
+    c.position = Eigen::Vector3d(face.position.x, face.position.y, face.position.z);
+    const Eigen::Vector3d beam = c.orientation * Eigen::Vector3d::UnitY();
+    c.velocity = (probe_.press_mm - sent_press_mm_) / dt * beam;
+    // a refused command (not a pose) leaves the physics on the last good one; the placement
+    // was checked above, so only a corrupt pose from a driver ends up here
+    physics_.command(c);
+    sent_press_mm_ = probe_.press_mm;
+    time_ += dt;
+    if (options_.clock == Clock::lock_step) physics_.step_to(time_);
+}
+
+void Session::press_and_settle(const Pose& rest, double press_mm, double settle_s)
+{
+    if (options_.clock != Clock::lock_step) throw std::logic_error("Session::press_and_settle needs the lock-step clock");
+    constexpr double ramp = 0.1;  // [s]
+    const double dt = options_.physics.time_step, start = time_;
+    while (time_ - start < settle_s - 0.5 * dt) {
+        place_probe({rest, press_mm * std::min(1.0, (time_ + dt - start) / ramp)});
+        advance(dt);
+    }
+}
+
+const SessionView& Session::view()
+{
+    const physics::SurfaceSnapshot& snap = physics_.latest();
+    if (snap.step != shown_step_) {
+        deformer_.apply(snap.positions, patch_);
+        shown_step_ = snap.step;
+    }
+    view_.probe = probe_.face();
+    view_.press_mm = probe_.press_mm;
+    view_.probe_force_N = snap.probe_force_N;
+    view_.time_s = snap.time;
+    view_.resets = snap.resets;
+    return view_;
+}
+
+}  // namespace echosim::session

@@ -1,0 +1,112 @@
+// One running simulator (DESIGN.md §1): the object the window, the headless commands, the
+// benchmarks and the tests drive, so that each of them is a few lines over it (STYLE.md 13).
+//
+// It owns:
+//   - the leg (the skin the tissue model is built on, and the render patch it deforms);
+//   - the tissue model at the resolution the physics runs at in real time, and its physics runner;
+//   - the probe: where the driver rests it on the skin and how far it presses it in;
+//   - the one path by which probe commands reach the physics (below);
+//   - the patch deformer that carries the tissue's surface onto the render patch;
+//   - the clock: real time (the physics thread steps on its own, every PhysicsOptions::time_step of
+//     wall-clock time), or lock-step on simulated time (advance() runs the steps in the caller's
+//     thread: headless runs, exams and tests are reproducible step for step).
+// The echographic image pipeline (issue 10) and the input and haptic devices (issue 11) join it
+// here; until they exist it holds nothing in their place.
+//
+// Threads and hand-offs. One driver thread (the window's main thread, a headless command, a test)
+// calls every member. The probe command path: the driver sets the probe (place_probe), and
+// advance() turns it into one physics::ProbeCommand, with the press speed from the change since the
+// last advance, and hands it to PhysicsRunner::command: a lock-free triple buffer, latest wins.
+// Its consumer is the physics thread (real time) or advance() itself (lock-step). The surface comes
+// back the same way: the physics publishes a snapshot after every step, and view() reads the newest
+// (the driver thread is its one reader). Nothing else crosses threads.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/pose.hpp"
+#include "physics/physics_options.hpp"
+#include "physics/physics_runner.hpp"
+#include "scene/leg.hpp"
+#include "session/patch_deformer.hpp"
+#include "session/simulation_model.hpp"
+#include "tissue/tissue_model.hpp"
+
+namespace echosim::session {
+
+enum class Clock {
+    real_time,  // the physics thread steps on wall-clock time
+    lock_step,  // advance() steps the physics on simulated time, in the caller's thread
+};
+
+struct SessionOptions {
+    Clock clock = Clock::lock_step;
+    int refine = kSimulationRefine;  // tissue grid refinement (7: 2500 nodes)
+    physics::PhysicsOptions physics;
+};
+
+// The probe the driver holds: resting on the skin at `rest` (the face on the skin, the beam along
+// the inward normal) and pressed `press_mm` along its beam.
+struct ProbePlacement {
+    Pose rest;
+    double press_mm = 0;  // [mm], >= 0
+    Pose face() const { return pressed_along_beam(rest, press_mm); }
+};
+
+// What the simulation looks like now, for the renderer and the user.
+struct SessionView {
+    const std::vector<scene::Vertex>* patch = nullptr;  // the render patch, deformed by the tissue
+    Pose probe;               // where the probe's face is (its commanded pose)
+    double press_mm = 0;      // [mm]
+    double probe_force_N = 0; // the tissue's push on the probe along its axis (latest step)
+    double time_s = 0;        // simulated time of the latest step
+    int resets = 0;           // times the physics recovered from an unstable state
+};
+
+class Session {
+public:
+    explicit Session(const SessionOptions& options = {});
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    const scene::LegModel& leg() const { return leg_; }
+    const tissue::TissueModel& tissue_model() const { return model_; }
+    Clock clock() const { return options_.clock; }
+    double time() const { return time_; }  // [s] of the session clock
+
+    // The probe the driver holds; it reaches the physics at the next advance().
+    const ProbePlacement& probe() const { return probe_; }
+    void place_probe(const ProbePlacement& placement);
+    // The probe on the exam patch at (u, v) in [0,1]^2, pressed `press_mm`.
+    void place_probe_on_patch(float u, float v, double press_mm);
+
+    // Moves the clock on by `dt` [s] and sends the probe to the physics; in lock-step, the physics
+    // is stepped to the new time here.
+    void advance(double dt);
+    // Lock-step: presses the probe resting at `rest` in to `press_mm` over 0.1 s, then holds it
+    // until `settle_s` of simulated time, so the tissue settles under it.
+    void press_and_settle(const Pose& rest, double press_mm, double settle_s = 0.4);
+
+    // The newest physics state on the render patch (deformed again only when a new step arrived).
+    const SessionView& view();
+    physics::RunnerStats physics_stats() const { return physics_.stats(); }
+    // Stops the physics thread (real time); the view keeps the last state. Also on destruction.
+    void stop();
+
+private:
+    SessionOptions options_;
+    scene::LegModel leg_;
+    tissue::TissueModel model_;
+    physics::PhysicsRunner physics_;
+    PatchDeformer deformer_;
+    ProbePlacement probe_;
+    double sent_press_mm_ = 0;  // the press of the last command sent [mm]
+    double time_ = 0;
+    std::int64_t shown_step_ = -1;  // the physics step the view shows
+    std::vector<scene::Vertex> patch_;
+    SessionView view_;
+};
+
+}  // namespace echosim::session
