@@ -104,7 +104,7 @@ private:
     ProbePlacement probe_;
     double sent_press_mm_ = 0;  // the press of the last command sent [mm]
     double time_ = 0;
-    std::int64_t shown_step_ = -1;  // the physics step the view shows
+    std::int64_t shown_step_ = 0;  // the physics step the view shows (0: the rest state, as the leg gives it)
     std::vector<scene::Vertex> patch_;
     SessionView view_;
 };

@@ -1,0 +1,106 @@
+#include "session/session.hpp"
+
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace echosim::session {
+namespace {
+
+// The patch vertex nearest the probe's resting point: how far it has been pushed in [mm].
+double patch_push(Session& s, const Pose& rest)
+{
+    const auto& verts = *s.view().patch;
+    const auto& rest_verts = s.leg().patch().rest.vertices;
+    std::size_t nearest = 0;
+    for (std::size_t k = 0; k < rest_verts.size(); ++k)
+        if (glm::length(rest_verts[k].position - rest.position) < glm::length(rest_verts[nearest].position - rest.position)) nearest = k;
+    return glm::dot(verts[nearest].position - rest_verts[nearest].position, rest.axis_y());
+}
+
+TEST(Session, StartsAtRestWithTheProbeOnThePatchCentre)
+{
+    Session s;
+    const SessionView& v = s.view();
+    EXPECT_EQ(v.probe_force_N, 0.0);
+    EXPECT_EQ(v.time_s, 0.0);
+    const Pose centre = s.leg().probe_rest_pose(0.5f, 0.5f);
+    EXPECT_EQ(v.probe.position, centre.position);
+    ASSERT_EQ(v.patch->size(), s.leg().patch().rest.vertices.size());
+    for (std::size_t k = 0; k < v.patch->size(); ++k) EXPECT_EQ((*v.patch)[k].position, s.leg().patch().rest.vertices[k].position);
+}
+
+// Lock-step: the clock is simulated time; each advance runs exactly the physics steps it covers.
+TEST(Session, LockStepAdvancesThePhysicsBySimulatedTime)
+{
+    Session s;
+    const double h = SessionOptions{}.physics.time_step;
+    for (int i = 0; i < 25; ++i) s.advance(h);
+    EXPECT_EQ(s.physics_stats().steps, 25);
+    s.advance(10 * h);
+    EXPECT_EQ(s.physics_stats().steps, 35);
+    EXPECT_NEAR(s.view().time_s, 35 * h, 1e-12);
+    EXPECT_NEAR(s.time(), 35 * h, 1e-12);
+}
+
+TEST(Session, TheCommandedProbeIsPressedAlongItsBeam)
+{
+    Session s;
+    const Pose rest = s.leg().probe_rest_pose(0.4f, 0.6f);
+    s.place_probe({rest, 7.5});
+    const Pose face = s.view().probe;
+    EXPECT_LT(glm::length(face.position - (rest.position + 7.5f * rest.axis_y())), 1e-4f);
+    EXPECT_EQ(face.orientation, rest.orientation);
+}
+
+// The same indentation drives what is felt and what is seen: pressing deeper gives a larger force
+// and a deeper dent in the drawn patch, read from the same view.
+TEST(Session, ADeeperPressPushesBackHarderAndDentsTheSkinFurther)
+{
+    const Pose rest = Session().leg().probe_rest_pose(0.5f, 0.5f);
+    double force[2], dent[2];
+    const double press[2] = {4.0, 10.0};
+    for (int k = 0; k < 2; ++k) {
+        Session s;
+        s.press_and_settle(rest, press[k]);
+        force[k] = s.view().probe_force_N;
+        dent[k] = patch_push(s, rest);
+        EXPECT_EQ(s.view().resets, 0);
+        // the skin under the face follows it to within the contact's sinking (a few tenths of a mm)
+        EXPECT_NEAR(dent[k], press[k], 1.0) << press[k] << " mm";
+    }
+    EXPECT_GT(force[0], 0.1);
+    EXPECT_GT(force[1], force[0] * 1.5);
+    EXPECT_GT(dent[1], dent[0] + 4.0);
+}
+
+TEST(Session, SameScriptSameResult)
+{
+    auto run = [] {
+        Session s;
+        for (int i = 0; i < 200; ++i) {
+            s.place_probe_on_patch(0.5f, 0.45f + 0.0005f * float(i), 6.0 * std::min(1.0, i / 50.0));
+            s.advance(1e-3);
+        }
+        return std::pair(s.view().probe_force_N, *s.view().patch);
+    };
+    const auto a = run(), b = run();
+    EXPECT_GT(a.first, 0.1);
+    EXPECT_EQ(a.first, b.first);
+    for (std::size_t k = 0; k < a.second.size(); ++k) ASSERT_EQ(a.second[k].position, b.second[k].position) << k;
+}
+
+TEST(Session, RefusesWhatIsNotAProbeOrATime)
+{
+    Session s;
+    EXPECT_THROW(s.place_probe({s.leg().probe_rest_pose(0.5f, 0.5f), -1.0}), std::invalid_argument);
+    EXPECT_THROW(s.place_probe({s.leg().probe_rest_pose(0.5f, 0.5f), std::nan("")}), std::invalid_argument);
+    EXPECT_THROW(s.advance(0.0), std::invalid_argument);
+    EXPECT_THROW(s.advance(-1e-3), std::invalid_argument);
+    Session real_time({.clock = Clock::real_time});
+    EXPECT_THROW(real_time.press_and_settle(real_time.probe().rest, 3.0), std::logic_error);
+    real_time.stop();
+}
+
+}  // namespace
+}  // namespace echosim::session
