@@ -11,6 +11,7 @@
 #include "app/default_scene.hpp"
 #include "app/gpu_args.hpp"
 #include "app/headless.hpp"
+#include "core/parse_number.hpp"
 
 namespace echosim::app {
 namespace {
@@ -24,11 +25,10 @@ void apply_camera(const std::string& text, DefaultScene& scene)
     if (fields.size() != 3 && fields.size() != 4 && fields.size() != 6)
         throw std::invalid_argument("expected yaw,pitch,distance[,x,y,z|,probe], got '" + text + "'");
     auto number = [&](std::size_t i, const char* name) {
-        char* end = nullptr;
-        const double v = std::strtod(fields[i].c_str(), &end);
-        if (end == fields[i].c_str() || *end != '\0' || !std::isfinite(v))
+        float v = 0;
+        if (!parse_number(fields[i], v) || !std::isfinite(v))
             throw std::invalid_argument(std::string(name) + " is not a finite number: '" + fields[i] + "'");
-        return float(v);
+        return v;
     };
     scene.camera.yaw = number(0, "yaw");
     scene.camera.pitch = number(1, "pitch");

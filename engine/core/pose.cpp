@@ -1,7 +1,8 @@
 #include "core/pose.hpp"
 
+#include "core/parse_number.hpp"
+
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -28,11 +29,10 @@ Pose parse_pose(std::string_view text)
         const std::string_view field = text.substr(pos, comma == std::string_view::npos ? text.npos : comma - pos);
         if (field.empty())
             throw std::invalid_argument("pose field " + std::string(names[i]) + " is missing (expected x,y,z,qw,qx,qy,qz)");
-        // from_chars does not skip blanks; tolerate them around a field
-        std::size_t b = field.find_first_not_of(' '), e = field.find_last_not_of(' ');
+        // parse_number reads whole tokens; tolerate blanks around a field
+        const std::size_t b = field.find_first_not_of(' '), e = field.find_last_not_of(' ');
         const std::string_view trimmed = b == field.npos ? field.substr(0, 0) : field.substr(b, e - b + 1);
-        auto [end, ec] = std::from_chars(trimmed.data(), trimmed.data() + trimmed.size(), v[i]);
-        if (ec != std::errc() || end != trimmed.data() + trimmed.size() || !std::isfinite(v[i]))
+        if (!parse_number(trimmed, v[i]) || !std::isfinite(v[i]))
             throw std::invalid_argument("pose field " + std::string(names[i]) + " is not a finite number: '" +
                                         std::string(field) + "'");
         if (i + 1 < names.size() && comma == std::string_view::npos)

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -11,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/parse_number.hpp"
 #include "io/partial_file.hpp"
 
 namespace echosim::fit {
@@ -84,8 +84,7 @@ MeasurementSet read_measurements(const std::filesystem::path& path)
         auto number = [&](Column c) {
             const std::string& f = fields[std::size_t(where[c])];
             double v = 0;
-            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-            if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v))
+            if (!parse_number(f, v) || !std::isfinite(v))
                 throw MeasurementError(here(kColumns[c]) + ": not a finite number: '" + f + "'");
             return v;
         };

@@ -1,52 +1,31 @@
 #include "io/nrrd.hpp"
 
+#include "core/parse_number.hpp"
 #include "io/partial_file.hpp"
 #include "io/text_fields.hpp"
+#include "io/zlib_stream.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cctype>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <istream>
 #include <limits>
-#include <memory>
-#include <system_error>
 #include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
-#define ZLIB_CONST
-#include <zlib.h>
-
 namespace echosim::io {
 namespace {
 
 using text::format_double;
-using text::max_header_line;
-using text::parse_double;
+using text::lower;
+using text::quote_text;
 using text::split_whitespace;
 using text::trim;
 
-constexpr std::size_t zlib_chunk = std::size_t(1) << 20;        // [bytes] file reads and writes around zlib
-
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why)
-{
-    throw NrrdError(path.string() + ": " + why);
-}
-
-std::string quote_text(std::string_view s) { return "'" + std::string(s) + "'"; }
-
-std::string lower(std::string_view s)
-{
-    std::string out(s);
-    for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why) { text::fail<NrrdError>(path, why); }
 
 // NRRD key/value escaping: a backslash and a newline are written as \\ and \n.
 std::string escape(std::string_view s)
@@ -76,7 +55,7 @@ std::string unescape(std::string_view s)
 
 bool read_line(std::istream& in, std::string& line, const std::filesystem::path& path)
 {
-    return text::read_line(in, line, max_header_line, [&] { fail(path, "header line longer than 1 MiB: not a NRRD header"); });
+    return text::read_header_line<NrrdError>(in, line, path, "NRRD");
 }
 
 // The field names the spec allows in two spellings, mapped to one.
@@ -89,72 +68,32 @@ std::string canonical_field(std::string name)
     return name;
 }
 
-struct ZlibInflate {
-    z_stream z{};
-    ~ZlibInflate() { inflateEnd(&z); }
-};
-struct ZlibDeflate {
-    z_stream z{};
-    ~ZlibDeflate() { deflateEnd(&z); }
-};
-
-// Inflates exactly `bytes` bytes of gzip (or zlib) data from `in`, growing the output as it comes so a
-// header that lies about its size costs no more memory than the data really holds. Runs on to the end
-// of the stream: its checksum is the only guard against corrupt data that still inflates.
+// The voxels from a gzip (or zlib) stream, its failures told in the header's fields.
 std::vector<std::uint8_t> inflate_data(std::istream& in, const NrrdHeader& header, std::uint64_t bytes)
 {
-    ZlibInflate zs;
-    if (inflateInit2(&zs.z, 15 + 32) != Z_OK) header.fail("encoding", "zlib could not start");  // 32: gzip or zlib
-    std::vector<std::uint8_t> out;
-    out.reserve(std::size_t(bytes));  // address space only: pages are touched as they are filled
-    std::vector<char> chunk(zlib_chunk);
-    std::array<Bytef, 4096> beyond;  // inflated bytes past the voxels, checked and dropped
-    bool stream_end = false;
-    while (!stream_end) {
-        if (zs.z.avail_in == 0) {
-            in.read(chunk.data(), std::streamsize(chunk.size()));
-            const auto got = in.gcount();
-            if (got <= 0) break;
-            zs.z.next_in = reinterpret_cast<const Bytef*>(chunk.data());
-            zs.z.avail_in = uInt(got);
-        }
-        const std::size_t before = out.size();
-        const std::size_t grow = std::size_t(std::min<std::uint64_t>(bytes - before, 4 * zlib_chunk));
-        out.resize(before + grow);
-        zs.z.next_out = grow > 0 ? out.data() + before : beyond.data();
-        zs.z.avail_out = grow > 0 ? uInt(grow) : uInt(beyond.size());
-        const int rc = inflate(&zs.z, Z_NO_FLUSH);
-        if (grow > 0) out.resize(before + grow - zs.z.avail_out);
-        if (rc == Z_STREAM_END) stream_end = true;
-        else if (rc != Z_OK && rc != Z_BUF_ERROR)
-            header.fail("encoding",
-                        std::string("corrupt gzip data: ") + (zs.z.msg ? zs.z.msg : "zlib error " + std::to_string(rc)));
+    try {
+        return inflate_exactly(in, bytes).data;  // what the stream holds past the voxels is dropped
+    } catch (const ZlibError& e) {
+        const std::string sizes_say = " bytes, sizes say " + std::to_string(bytes);
+        if (e.kind() == ZlibError::Kind::ended_early)
+            header.fail("sizes", "truncated data: the gzip data holds " + std::to_string(e.produced()) + sizes_say);
+        if (e.kind() == ZlibError::Kind::input_ended && e.produced() < bytes)
+            header.fail("sizes", "truncated data: the gzip data ends after " + std::to_string(e.produced()) + sizes_say);
+        if (e.kind() == ZlibError::Kind::input_ended)
+            header.fail("encoding", "truncated gzip data: the file ends before the stream's checksum");
+        if (e.kind() == ZlibError::Kind::corrupt) header.fail("encoding", std::string("corrupt gzip data: ") + e.what());
+        header.fail("encoding", e.what());
     }
-    if (out.size() < bytes)
-        header.fail("sizes", "truncated data: the gzip data " + std::string(stream_end ? "holds" : "ends after") + " " +
-                                 std::to_string(out.size()) + " bytes, sizes say " + std::to_string(bytes));
-    if (!stream_end) header.fail("encoding", "truncated gzip data: the file ends before the stream's checksum");
-    return out;
 }
 
 std::vector<std::uint8_t> read_raw(std::istream& in, const NrrdHeader& header, std::uint64_t bytes)
 {
-    // look before allocating: a truncated file must not cost the memory its header claims
-    const auto here = in.tellg();
-    if (here != std::streampos(-1)) {
-        in.seekg(0, std::ios::end);
-        const auto end = in.tellg();
-        in.seekg(here);
-        if (end != std::streampos(-1) && std::uint64_t(end - here) < bytes)
-            header.fail("sizes", "truncated data: " + std::to_string(end - here) + " bytes follow the header, sizes say " +
-                                     std::to_string(bytes));
-    }
-    std::vector<std::uint8_t> out(static_cast<std::size_t>(bytes));
-    in.read(reinterpret_cast<char*>(out.data()), std::streamsize(bytes));
-    if (std::uint64_t(in.gcount()) != bytes)
-        header.fail("sizes", "truncated data: " + std::to_string(in.gcount()) + " bytes follow the header, sizes say " +
+    std::uint64_t found = 0;
+    auto data = text::read_exactly(in, bytes, found);
+    if (!data)
+        header.fail("sizes", "truncated data: " + std::to_string(found) + " bytes follow the header, sizes say " +
                                  std::to_string(bytes));
-    return out;
+    return std::move(*data);
 }
 
 // "(x,y,z)" with optional blanks; "none" gives an empty vector.
@@ -169,7 +108,7 @@ std::vector<double> parse_vector(const NrrdHeader& header, std::string_view fiel
         const auto comma = rest.find(',');
         const std::string_view part = trim(rest.substr(0, comma));
         double x = 0;
-        if (!parse_double(part, x)) header.fail(field, quote_text(part) + " in " + quote_text(token) + " is not a number");
+        if (!parse_number(part, x)) header.fail(field, quote_text(part) + " in " + quote_text(token) + " is not a number");
         if (!std::isfinite(x)) header.fail(field, "non-finite number " + quote_text(part) + " in " + quote_text(token));
         v.push_back(x);
         if (comma == std::string_view::npos) break;
@@ -198,29 +137,6 @@ bool is_singular(const glm::dmat3& m)
 {
     const double scale = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
     return !(std::abs(glm::determinant(m)) > 1e-12 * scale);
-}
-
-void write_gzip(PartialFile<NrrdError>& out, const std::uint8_t* data, std::size_t n, const std::filesystem::path& path)
-{
-    ZlibDeflate zs;
-    // level 3: volumes are big, favour speed over the last few per cent; 15 + 16: gzip wrapper
-    if (deflateInit2(&zs.z, 3, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) fail(path, "zlib could not start");
-    std::vector<std::uint8_t> buf(zlib_chunk);
-    std::size_t pos = 0;
-    int rc = Z_OK;
-    while (rc != Z_STREAM_END) {
-        if (zs.z.avail_in == 0 && pos < n) {
-            const std::size_t take = std::min<std::size_t>(n - pos, std::size_t(1) << 30);
-            zs.z.next_in = data + pos;
-            zs.z.avail_in = uInt(take);
-            pos += take;
-        }
-        zs.z.next_out = buf.data();
-        zs.z.avail_out = uInt(buf.size());
-        rc = deflate(&zs.z, pos == n ? Z_FINISH : Z_NO_FLUSH);
-        if (rc == Z_STREAM_ERROR) fail(path, "zlib failed while compressing");
-        out.write(buf.data(), buf.size() - zs.z.avail_out);
-    }
 }
 
 void check_volume(const std::filesystem::path& path, const Volume& v)
@@ -323,9 +239,7 @@ std::vector<std::uint64_t> NrrdHeader::sizes() const
 {
     const std::string& dim_text = require("dimension");
     std::uint64_t dimension = 0;
-    const auto dim_view = trim(dim_text);
-    if (const auto [end, ec] = std::from_chars(dim_view.data(), dim_view.data() + dim_view.size(), dimension);
-        ec != std::errc() || end != dim_view.data() + dim_view.size() || dimension == 0 || dimension > 16)
+    if (!parse_number(trim(dim_text), dimension) || dimension == 0 || dimension > 16)
         fail("dimension", quote_text(dim_text) + " is not a dimension from 1 to 16");
     const auto tokens = split_whitespace(require("sizes"));
     if (tokens.size() != dimension)
@@ -333,10 +247,9 @@ std::vector<std::uint64_t> NrrdHeader::sizes() const
     std::vector<std::uint64_t> out;
     for (const std::string_view token : tokens) {
         std::uint64_t s = 0;
-        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), s);
-        if (ec == std::errc::result_out_of_range) fail("sizes", quote_text(token) + " overflows a 64-bit size");
-        if (ec != std::errc() || end != token.data() + token.size() || s == 0)
-            fail("sizes", quote_text(token) + " is not a positive integer");
+        const ParsedNumber parsed = parse_number(token, s);
+        if (parsed.out_of_range()) fail("sizes", quote_text(token) + " overflows a 64-bit size");
+        if (!parsed || s == 0) fail("sizes", quote_text(token) + " is not a positive integer");
         out.push_back(s);
     }
     return out;
@@ -426,15 +339,21 @@ void write_nrrd(const std::filesystem::path& path, const Volume& volume, bool gz
 
     PartialFile<NrrdError> out(path);
     out.write(h.data(), h.size());
-    if (gzip) write_gzip(out, volume.data.data(), volume.data.size(), path);
-    else out.write(volume.data.data(), volume.data.size());
+    if (gzip) {
+        try {
+            deflate_stream(volume.data, ZlibWrapper::gzip, [&](std::span<const std::uint8_t> s) { out.write(s.data(), s.size()); });
+        } catch (const ZlibError& e) {
+            fail(path, e.what());
+        }
+    } else {
+        out.write(volume.data.data(), volume.data.size());
+    }
     out.commit();
 }
 
 Volume read_nrrd(const std::filesystem::path& path, std::uint64_t memory_budget_bytes)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open: " + std::generic_category().message(errno));
+    std::ifstream in = text::open_binary<NrrdError>(path);
     const NrrdHeader header = read_nrrd_header(in, path);
 
     Volume v;
@@ -484,7 +403,7 @@ Volume read_nrrd(const std::filesystem::path& path, std::uint64_t memory_budget_
         if (tokens.size() != 3) header.fail("spacings", "expected 3 spacings, found " + std::to_string(tokens.size()));
         for (int c = 0; c < 3; ++c) {
             double s = 0;
-            if (!parse_double(tokens[std::size_t(c)], s) || !std::isfinite(s) || s == 0)
+            if (!parse_number(tokens[std::size_t(c)], s) || !std::isfinite(s) || s == 0)
                 header.fail("spacings", quote_text(tokens[std::size_t(c)]) + " is not a finite non-zero number");
             v.directions[c][c] = s;
         }

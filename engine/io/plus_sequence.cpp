@@ -1,13 +1,13 @@
 #include "io/plus_sequence.hpp"
 
+#include "core/parse_number.hpp"
+#include "io/nrrd.hpp"
 #include "io/partial_file.hpp"
 #include "io/text_fields.hpp"
+#include "io/zlib_stream.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cctype>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -17,55 +17,26 @@
 #include <map>
 #include <optional>
 #include <string_view>
-#include <system_error>
 #include <utility>
-
-#include "io/nrrd.hpp"
-
-#define ZLIB_CONST
-#include <zlib.h>
 
 namespace echosim::io {
 namespace {
 
+using text::bytes_left;
 using text::format_double;
-using text::max_header_line;
-using text::parse_double;
+using text::quote_text;
 using text::split_whitespace;
 using text::trim;
+using text::upper;
 
 constexpr std::string_view frame_prefix = "Seq_Frame";
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why)
-{
-    throw PlusSequenceError(path.string() + ": " + why);
-}
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why) { text::fail<PlusSequenceError>(path, why); }
 
 // `field` is the name as the file spells it, e.g. Seq_Frame0002_ImageToReferenceTransform.
 [[noreturn]] void fail_field(const std::filesystem::path& path, std::string_view field, const std::string& why)
 {
-    throw PlusSequenceError(path.string() + ": " + std::string(field) + ": " + why);
-}
-
-std::string quote_text(std::string_view s)
-{
-    constexpr std::size_t shown = 80;  // [chars] enough to recognise a line, not a screenful of binary
-    return "'" + std::string(s.substr(0, shown)) + (s.size() > shown ? "...'" : "'");
-}
-
-std::string upper(std::string_view s)
-{
-    std::string out(s);
-    for (char& c : out) c = char(std::toupper(static_cast<unsigned char>(c)));
-    return out;
-}
-
-std::optional<std::uint64_t> parse_u64(std::string_view s)
-{
-    std::uint64_t v = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-    return v;
+    fail(path, std::string(field) + ": " + why);
 }
 
 std::string frame_label(std::size_t frame)
@@ -77,18 +48,7 @@ std::string frame_label(std::size_t frame)
 
 bool read_line(std::istream& in, std::string& line, const std::filesystem::path& path)
 {
-    return text::read_line(in, line, max_header_line, [&] { fail(path, "header line longer than 1 MiB: not a sequence header"); });
-}
-
-// Bytes left in `in` after its current position, or max when it cannot tell.
-std::uint64_t bytes_left(std::istream& in)
-{
-    const auto here = in.tellg();
-    if (here == std::streampos(-1)) return std::numeric_limits<std::uint64_t>::max();
-    in.seekg(0, std::ios::end);
-    const auto end = in.tellg();
-    in.seekg(here);
-    return end == std::streampos(-1) ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(end - here);
+    return text::read_header_line<PlusSequenceError>(in, line, path, "sequence");
 }
 
 using FieldMap = std::map<std::string, std::string, std::less<>>;
@@ -117,10 +77,10 @@ void add_field(const std::filesystem::path& path, SequenceHeader& header, std::s
     }
     const std::string_view rest = name.substr(frame_prefix.size());
     const std::size_t digits = std::min(rest.find_first_not_of("0123456789"), rest.size());
-    const auto frame = parse_u64(rest.substr(0, digits));
-    if (!frame || digits >= rest.size() || rest[digits] != '_' || digits + 1 == rest.size())
+    std::uint64_t frame = 0;
+    if (!parse_number(rest.substr(0, digits), frame) || digits >= rest.size() || rest[digits] != '_' || digits + 1 == rest.size())
         fail_field(path, name, "malformed frame field name (expected Seq_FrameNNNN_Name)");
-    FrameFields& f = header.frames[*frame];
+    FrameFields& f = header.frames[frame];
     if (f.label.empty()) f.label = std::string(name.substr(0, frame_prefix.size() + digits));
     if (!f.fields.emplace(std::string(rest.substr(digits + 1)), std::move(value)).second)
         fail_field(path, name, "given twice for this frame");
@@ -134,7 +94,7 @@ glm::dmat4 parse_matrix(const std::filesystem::path& path, std::string_view fiel
     glm::dmat4 m{1.0};
     for (std::size_t i = 0; i < 16; ++i) {
         double x = 0;
-        if (!parse_double(tokens[i], x))
+        if (!parse_number(tokens[i], x))
             fail_field(path, field, "entry " + std::to_string(i) + " " + quote_text(tokens[i]) + " is not a number");
         if (!std::isfinite(x))
             fail_field(path, field, "entry " + std::to_string(i) + " " + quote_text(tokens[i]) + " is not finite");
@@ -211,7 +171,7 @@ TrackedFrame resolve_frame(const std::filesystem::path& path, const SequenceHead
 
     const auto timestamp = frame.fields.find("Timestamp");
     if (timestamp == frame.fields.end()) fail_field(path, frame.label + "_Timestamp", "missing");
-    if (!parse_double(timestamp->second, out.timestamp) || !std::isfinite(out.timestamp))
+    if (!parse_number(timestamp->second, out.timestamp) || !std::isfinite(out.timestamp))
         fail_field(path, frame.label + "_Timestamp", quote_text(timestamp->second) + " is not a finite number");
     return out;
 }
@@ -257,9 +217,9 @@ FrameGeometry frame_geometry(const std::filesystem::path& path, std::string_view
 {
     std::vector<std::uint64_t> sizes;
     for (const std::string_view token : split_whitespace(sizes_text)) {
-        const auto s = parse_u64(token);
-        if (!s || *s == 0) fail_field(path, sizes_field, quote_text(token) + " is not a positive integer");
-        sizes.push_back(*s);
+        std::uint64_t s = 0;
+        if (!parse_number(token, s) || s == 0) fail_field(path, sizes_field, quote_text(token) + " is not a positive integer");
+        sizes.push_back(s);
     }
     std::vector<std::uint64_t> spatial;
     std::optional<std::uint64_t> count;
@@ -295,6 +255,35 @@ std::uint64_t pixel_bytes(const std::filesystem::path& path, std::string_view si
         fail_field(path, sizes_field, std::to_string(bytes) + " bytes of pixels exceed the memory budget of " +
                                           std::to_string(budget) + " bytes");
     return bytes;
+}
+
+// The pixels from a zlib stream of at most `packed` bytes, streamed: the compressed data is never
+// held whole, and the pixels grow only as the stream delivers them.
+std::vector<std::uint8_t> inflate_pixels(const std::filesystem::path& path, std::istream& in, std::uint64_t bytes,
+                                         std::uint64_t packed)
+{
+    const std::string dim_size = std::to_string(bytes) + " bytes DimSize gives";
+    const std::string corrupt = "compressed pixel data fails to inflate (corrupt or truncated): ";
+    Inflated pixels;
+    try {
+        pixels = inflate_exactly(in, bytes, packed);
+    } catch (const ZlibError& e) {
+        const std::string produced = std::to_string(e.produced());
+        if (e.kind() == ZlibError::Kind::ended_early)
+            fail_field(path, "CompressedData", "the compressed pixels inflate to " + produced + " bytes, DimSize needs " +
+                                                   std::to_string(bytes));
+        if (e.kind() == ZlibError::Kind::input_ended && e.produced() == bytes)
+            fail_field(path, "CompressedData",
+                       "the compressed pixels do not end after the " + dim_size + " (more data, or a cut stream)");
+        if (e.kind() == ZlibError::Kind::input_ended)
+            fail_field(path, "CompressedData", corrupt + "the data ends after " + produced + " of the " + dim_size);
+        if (e.kind() == ZlibError::Kind::corrupt) fail_field(path, "CompressedData", corrupt + e.what());
+        fail_field(path, "CompressedData", e.what());
+    }
+    if (pixels.beyond > 0)
+        fail_field(path, "CompressedData", "the compressed pixels do not end after the " + dim_size + ": they hold " +
+                                               std::to_string(pixels.beyond) + " bytes more");
+    return std::move(pixels.data);
 }
 
 Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
@@ -335,8 +324,11 @@ Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_
     if (const std::string& type = require("ElementType"); type != "MET_UCHAR")
         fail_field(path, "ElementType", quote_text(type) + " is not supported: only MET_UCHAR (8-bit greyscale)");
     const std::string& dims = require("DimSize");
-    if (const std::string* ndims = header.file_field("NDims"); ndims && parse_u64(*ndims) != split_whitespace(dims).size())
-        fail_field(path, "NDims", quote_text(*ndims) + " does not match DimSize " + quote_text(dims));
+    if (const std::string* ndims = header.file_field("NDims")) {
+        std::uint64_t n = 0;
+        if (!parse_number(*ndims, n) || n != split_whitespace(dims).size())
+            fail_field(path, "NDims", quote_text(*ndims) + " does not match DimSize " + quote_text(dims));
+    }
     const FrameGeometry geometry = frame_geometry(path, "DimSize", dims, "Kinds", header.file_field("Kinds"));
     bool compressed = false;
     if (const std::string* c = header.file_field("CompressedData")) {
@@ -355,41 +347,27 @@ Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_
     sweep.frames = resolve_frames(path, header, geometry.count, "DimSize");
 
     // the pixels, checked against what is left of the file before allocating
-    const std::uint64_t left = bytes_left(in);
     if (!compressed) {
-        if (left < bytes)
-            fail_field(path, "ElementDataFile", "truncated pixel data: " + std::to_string(left) +
+        std::uint64_t found = 0;
+        auto pixels = text::read_exactly(in, bytes, found);
+        if (!pixels)
+            fail_field(path, "ElementDataFile", "truncated pixel data: " + std::to_string(found) +
                                                     " bytes after the header, DimSize needs " + std::to_string(bytes));
-        sweep.pixels.resize(std::size_t(bytes));
-        in.read(reinterpret_cast<char*>(sweep.pixels.data()), std::streamsize(bytes));
-        if (std::uint64_t(in.gcount()) != bytes) fail_field(path, "ElementDataFile", "truncated pixel data: read failed");
+        sweep.pixels = std::move(*pixels);
         return sweep;
     }
+    const std::uint64_t left = bytes_left(in);
     std::uint64_t packed = left;
     if (const std::string* size = header.file_field("CompressedDataSize")) {
-        const auto s = parse_u64(*size);
-        if (!s || *s == 0) fail_field(path, "CompressedDataSize", quote_text(*size) + " is not a positive integer");
-        if (*s > left)
+        std::uint64_t n = 0;
+        if (!parse_number(*size, n) || n == 0)
+            fail_field(path, "CompressedDataSize", quote_text(*size) + " is not a positive integer");
+        if (n > left)
             fail_field(path, "CompressedDataSize", "truncated pixel data: " + *size + " compressed bytes announced, " +
                                                        std::to_string(left) + " left in the file");
-        packed = *s;
+        packed = n;
     }
-    if (packed > budget) fail_field(path, "CompressedDataSize", "compressed data exceeds the memory budget");
-    std::vector<std::uint8_t> compressed_data(static_cast<std::size_t>(packed));
-    in.read(reinterpret_cast<char*>(compressed_data.data()), std::streamsize(packed));
-    if (std::uint64_t(in.gcount()) != packed) fail_field(path, "CompressedDataSize", "truncated pixel data: read failed");
-    sweep.pixels.resize(std::size_t(bytes));
-    uLongf produced = uLongf(bytes);
-    const int rc = uncompress(sweep.pixels.data(), &produced, compressed_data.data(), uLong(packed));
-    if (rc == Z_BUF_ERROR && produced == bytes)
-        fail_field(path, "CompressedData", "the compressed pixels do not end after the " + std::to_string(bytes) +
-                                               " bytes DimSize gives (more data, or a cut stream)");
-    if (rc != Z_OK)
-        fail_field(path, "CompressedData",
-                   "compressed pixel data fails to inflate (corrupt or truncated): " + std::string(zError(rc)));
-    if (produced != bytes)
-        fail_field(path, "CompressedData", "the compressed pixels inflate to " + std::to_string(produced) +
-                                               " bytes, DimSize needs " + std::to_string(bytes));
+    sweep.pixels = inflate_pixels(path, in, bytes, packed);
     return sweep;
 }
 
@@ -442,14 +420,15 @@ void check_sweep(const std::filesystem::path& path, const Sweep& sweep)
 void write_plus_mha(const std::filesystem::path& path, const Sweep& sweep, bool compressed)
 {
     check_sweep(path, sweep);
+    // compressed first: the header gives the compressed size
     std::vector<std::uint8_t> packed;
     if (compressed) {
-        // level 3: sweeps are big, favour speed over the last few per cent; zlib format, as PLUS writes
-        uLongf size = compressBound(uLong(sweep.pixels.size()));
-        packed.resize(size);
-        if (compress2(packed.data(), &size, sweep.pixels.data(), uLong(sweep.pixels.size()), 3) != Z_OK)
-            fail(path, "zlib failed while compressing the pixels");
-        packed.resize(size);
+        try {
+            deflate_stream(sweep.pixels, ZlibWrapper::zlib,  // the zlib format, as PLUS writes
+                           [&](std::span<const std::uint8_t> s) { packed.insert(packed.end(), s.begin(), s.end()); });
+        } catch (const ZlibError& e) {
+            fail(path, "compressing the pixels: " + std::string(e.what()));
+        }
     }
 
     const std::string frame_count = std::to_string(sweep.frames.size());
@@ -481,8 +460,7 @@ void write_plus_mha(const std::filesystem::path& path, const Sweep& sweep, bool 
 
 Sweep read_plus_sequence(const std::filesystem::path& path, std::uint64_t memory_budget_bytes)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open: " + std::generic_category().message(errno));
+    std::ifstream in = text::open_binary<PlusSequenceError>(path);
     char magic[4] = {};
     in.read(magic, sizeof magic);
     in.clear();

@@ -1,12 +1,21 @@
-// Small text helpers shared by the readers of text headers (NRRD, PLUS/MetaImage sequences).
+// Small helpers shared by the readers and writers of formats with a text header (NRRD, PLUS/MetaImage
+// sequences): the header's text, the file's messages, and the raw data after the header. Numbers are
+// read by echosim::parse_number (core/parse_number.hpp), compressed data by io/zlib_stream.hpp.
 #pragma once
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <istream>
+#include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace echosim::io::text {
@@ -30,14 +39,6 @@ inline std::vector<std::string_view> split_whitespace(std::string_view s)
     return out;
 }
 
-// A whole token as a double ("nan" and "inf" parse, so callers can say "non-finite").
-inline bool parse_double(std::string_view s, double& out)
-{
-    if (s.size() > 1 && s[0] == '+') s.remove_prefix(1);  // from_chars takes no '+'
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-    return !s.empty() && ec == std::errc() && end == s.data() + s.size();
-}
-
 // The shortest form that reads back exactly.
 inline std::string format_double(double v)
 {
@@ -46,14 +47,50 @@ inline std::string format_double(double v)
     return ec == std::errc() ? std::string(buf, end) : std::string("nan");
 }
 
+// A value quoted for a message, cut short: enough to recognise a line, not a screenful of binary.
+inline std::string quote_text(std::string_view s)
+{
+    constexpr std::size_t shown = 80;  // [chars]
+    return "'" + std::string(s.substr(0, shown)) + (s.size() > shown ? "...'" : "'");
+}
+
+inline std::string upper(std::string_view s)
+{
+    std::string out(s);
+    for (char& c : out) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return out;
+}
+
+inline std::string lower(std::string_view s)
+{
+    std::string out(s);
+    for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+// Each format throws its own exception type, its message opening with the file.
+template <class Error>
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why)
+{
+    throw Error(path.string() + ": " + why);
+}
+
+template <class Error>
+std::ifstream open_binary(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail<Error>(path, "cannot open: " + std::generic_category().message(errno));
+    return in;
+}
+
 // The longest header line the text-header readers (NRRD, PLUS) accept [bytes]: a longer "line" is
 // binary junk, and reading on would only fill memory.
 inline constexpr std::size_t max_header_line = std::size_t(1) << 20;
 
 // One header line without its "\n" or "\r\n"; false at the end of the input. A line longer than
-// max_length calls too_long() (which throws): binary data where a header was expected.
-template <class TooLong>
-bool read_line(std::istream& in, std::string& line, std::size_t max_length, TooLong&& too_long)
+// max_header_line throws Error naming the file: binary data where a `format` header was expected.
+template <class Error>
+bool read_header_line(std::istream& in, std::string& line, const std::filesystem::path& path, std::string_view format)
 {
     line.clear();
     std::streambuf* buf = in.rdbuf();
@@ -65,11 +102,38 @@ bool read_line(std::istream& in, std::string& line, std::size_t max_length, TooL
             break;
         }
         if (c == '\n') break;
-        if (line.size() >= max_length) too_long();
+        if (line.size() >= max_header_line)
+            fail<Error>(path, "header line longer than " + std::to_string(max_header_line >> 20) + " MiB: not a " +
+                                  std::string(format) + " header");
         line.push_back(char(c));
     }
     if (!line.empty() && line.back() == '\r') line.pop_back();
     return true;
+}
+
+// Bytes left in `in` after its current position, or max when it cannot tell: what a header's
+// sizes are checked against before anything is allocated for them.
+inline std::uint64_t bytes_left(std::istream& in)
+{
+    const auto here = in.tellg();
+    if (here == std::streampos(-1)) return std::numeric_limits<std::uint64_t>::max();
+    in.seekg(0, std::ios::end);
+    const auto end = in.tellg();
+    in.seekg(here);
+    return end == std::streampos(-1) ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(end - here);
+}
+
+// Exactly `bytes` raw bytes from `in`; else nullopt, with `found` the bytes the input holds. Looks
+// before allocating: a truncated file does not cost the memory its header claims.
+inline std::optional<std::vector<std::uint8_t>> read_exactly(std::istream& in, std::uint64_t bytes, std::uint64_t& found)
+{
+    found = bytes_left(in);
+    if (found < bytes) return std::nullopt;
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(bytes));
+    in.read(reinterpret_cast<char*>(out.data()), std::streamsize(bytes));
+    found = std::uint64_t(in.gcount());
+    if (found != bytes) return std::nullopt;
+    return out;
 }
 
 }  // namespace echosim::io::text

@@ -390,6 +390,27 @@ TEST(PlusSequence, RejectsCorruptCompressedData)
     std::filesystem::remove(path);
 }
 
+TEST(PlusSequence, InflatesNoMoreThanCompressedDataSizeAnnounces)
+{
+    const Sweep s = make_sweep(32, 32, 3);
+    const auto path = temp("announced.mha");
+    write_plus_mha(path, s, true);
+    const std::string good = read_bytes(path);
+    const auto size_at = good.find("\nCompressedDataSize = ") + 1;
+    const std::string size_line = good.substr(size_at, good.find('\n', size_at) - size_at);
+    const std::uint64_t packed = std::stoull(size_line.substr(21));
+
+    // more bytes after the stream than the header announces: they are not the pixels' business
+    write_bytes(path, good + "trailing bytes");
+    expect_same_sweep(read_plus_sequence(path), s);
+    // an announced size that stops inside the checksum, or halfway through the stream
+    write_bytes(path, with(good, size_line, "CompressedDataSize = " + std::to_string(packed - 2)));
+    expect_plus_error(path, {"CompressedData", "do not end", "cut stream"});
+    write_bytes(path, with(good, size_line, "CompressedDataSize = " + std::to_string(packed / 2)));
+    expect_plus_error(path, {"CompressedData", "fails to inflate", "ends after"});
+    std::filesystem::remove(path);
+}
+
 TEST(PlusSequence, RejectsPixelsBeyondTheMemoryBudget)
 {
     const auto path = temp("budget.mha");

@@ -1,0 +1,60 @@
+// The one zlib path of the file formats that carry compressed data after a text header (NRRD's gzip
+// encoding, PLUS/MetaImage CompressedData): a streaming inflate and a deflate.
+//
+// Inflating grows its output as the data comes, so a header that lies about the size costs no more
+// memory than the stream really holds, and reads its input in chunks, so the compressed data is never
+// held whole. It runs on to the end of the stream: the checksum there is the only guard against
+// corrupt data that still inflates. Failures are thrown as ZlibError with what the caller needs to
+// say what went wrong in its own terms (file, field, the size its header gave).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace echosim::io {
+
+class ZlibError : public std::runtime_error {
+public:
+    enum class Kind {
+        cannot_start,  // zlib could not be set up (out of memory)
+        corrupt,       // not a zlib or gzip stream, or a wrong checksum; what() holds zlib's reason
+        ended_early,   // the stream ended, checksum and all, before the bytes wanted: produced() says how many
+        input_ended,   // the input (or its allowance) ended inside the stream, after produced() bytes
+        compressing,   // deflate failed
+    };
+    ZlibError(Kind kind, std::uint64_t produced, const std::string& what)
+        : std::runtime_error(what), kind_(kind), produced_(produced)
+    {
+    }
+    Kind kind() const { return kind_; }
+    std::uint64_t produced() const { return produced_; }  // [bytes] inflated before the failure, at most the bytes wanted
+
+private:
+    Kind kind_;
+    std::uint64_t produced_;
+};
+
+struct Inflated {
+    std::vector<std::uint8_t> data;  // exactly the bytes wanted
+    std::uint64_t beyond = 0;        // [bytes] the stream held past them, inflated, checked and dropped
+};
+
+// Inflates a zlib or gzip stream (told apart by its header) from `in`, reading at most `max_input`
+// bytes of it, into exactly `bytes` bytes. Leaves `in` somewhere past the stream's end.
+Inflated inflate_exactly(std::istream& in, std::uint64_t bytes,
+                         std::uint64_t max_input = std::numeric_limits<std::uint64_t>::max());
+
+enum class ZlibWrapper { zlib, gzip };
+
+// Deflates `data` into one zlib or gzip stream, handed to `write` a chunk at a time (`write` may
+// throw; the stream is then abandoned).
+void deflate_stream(std::span<const std::uint8_t> data, ZlibWrapper wrapper,
+                    const std::function<void(std::span<const std::uint8_t>)>& write);
+
+}  // namespace echosim::io

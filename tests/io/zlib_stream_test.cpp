@@ -1,0 +1,149 @@
+#include "io/zlib_stream.hpp"
+
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+namespace echosim::io {
+namespace {
+
+// 3 MiB that compress, but not to nothing: several of the 1 MiB chunks the module works in.
+std::vector<std::uint8_t> pattern(std::size_t n = std::size_t(3) << 20)
+{
+    std::vector<std::uint8_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = std::uint8_t((i * 7919 + i / 253) >> 3);
+    return v;
+}
+
+std::string deflated(const std::vector<std::uint8_t>& data, ZlibWrapper wrapper)
+{
+    std::string out;
+    deflate_stream(data, wrapper, [&](std::span<const std::uint8_t> s) { out.append(s.begin(), s.end()); });
+    return out;
+}
+
+// zlib's own one-shot compress, an encoder independent of the module
+std::string compressed_by_zlib(const std::vector<std::uint8_t>& data)
+{
+    uLongf size = compressBound(uLong(data.size()));
+    std::string out(size, '\0');
+    EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(out.data()), &size, data.data(), uLong(data.size()), 6), Z_OK);
+    out.resize(size);
+    return out;
+}
+
+// zlib's own inflate of a whole zlib (15) or gzip (15 + 16) stream, a decoder independent of the module
+std::vector<std::uint8_t> inflated_by_zlib(const std::string& packed, int window_bits, std::size_t size)
+{
+    std::vector<std::uint8_t> out(size + 1);  // one spare byte: the stream must not fill it
+    z_stream z{};
+    EXPECT_EQ(inflateInit2(&z, window_bits), Z_OK);
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(packed.data()));
+    z.avail_in = uInt(packed.size());
+    z.next_out = out.data();
+    z.avail_out = uInt(out.size());
+    EXPECT_EQ(inflate(&z, Z_FINISH), Z_STREAM_END);
+    EXPECT_EQ(z.avail_out, 1u);
+    inflateEnd(&z);
+    out.pop_back();
+    return out;
+}
+
+ZlibError inflate_error(const std::string& packed, std::uint64_t bytes, std::uint64_t max_input = UINT64_MAX)
+{
+    std::istringstream in(packed);
+    try {
+        inflate_exactly(in, bytes, max_input);
+    } catch (const ZlibError& e) {
+        return e;
+    }
+    ADD_FAILURE() << "no error inflating " << bytes << " bytes";
+    return ZlibError(ZlibError::Kind::compressing, 0, "none");
+}
+
+TEST(ZlibStream, DeflatesWhatZlibItselfInflates)
+{
+    const auto data = pattern();
+    const std::string z = deflated(data, ZlibWrapper::zlib);
+    EXPECT_EQ(std::uint8_t(z[0]), 0x78);  // zlib header: deflate, 32 KiB window
+    EXPECT_LT(z.size(), data.size());
+    EXPECT_EQ(inflated_by_zlib(z, 15, data.size()), data);
+    const std::string gz = deflated(data, ZlibWrapper::gzip);
+    EXPECT_EQ(std::uint8_t(gz[0]), 0x1f);  // gzip magic
+    EXPECT_EQ(std::uint8_t(gz[1]), 0x8b);
+    EXPECT_EQ(inflated_by_zlib(gz, 15 + 16, data.size()), data);
+    // nothing at all is still one whole stream
+    EXPECT_TRUE(inflated_by_zlib(deflated({}, ZlibWrapper::gzip), 15 + 16, 0).empty());
+}
+
+TEST(ZlibStream, InflatesZlibAndGzipStreamsExactly)
+{
+    const auto data = pattern();
+    for (const std::string& packed : {compressed_by_zlib(data), deflated(data, ZlibWrapper::gzip)}) {
+        std::istringstream in(packed);
+        const Inflated back = inflate_exactly(in, data.size());
+        EXPECT_EQ(back.data, data);
+        EXPECT_EQ(back.beyond, 0u);
+    }
+}
+
+TEST(ZlibStream, ChecksTheStreamPastTheBytesWantedAndCountsWhatItDrops)
+{
+    const auto data = pattern();
+    std::istringstream in(compressed_by_zlib(data));
+    const Inflated front = inflate_exactly(in, 1000);
+    EXPECT_EQ(front.data, std::vector<std::uint8_t>(data.begin(), data.begin() + 1000));
+    EXPECT_EQ(front.beyond, data.size() - 1000);
+}
+
+TEST(ZlibStream, ReadsNoMoreThanItsAllowance)
+{
+    const auto data = pattern(100000);
+    const std::string packed = compressed_by_zlib(data);
+    // the stream followed by something else: the allowance is exactly the stream
+    std::istringstream in(packed + "NEXT");
+    EXPECT_EQ(inflate_exactly(in, data.size(), packed.size()).data, data);
+    // an allowance that stops inside the checksum: every byte is there, the stream is not
+    const ZlibError e = inflate_error(packed, data.size(), packed.size() - 2);
+    EXPECT_EQ(e.kind(), ZlibError::Kind::input_ended);
+    EXPECT_EQ(e.produced(), data.size());
+    // the bytes past the allowance are never read
+    std::istringstream cut(packed);
+    EXPECT_THROW(inflate_exactly(cut, data.size(), 10), ZlibError);
+    EXPECT_EQ(cut.tellg(), std::streampos(10));
+}
+
+TEST(ZlibStream, TellsTruncatedShortAndCorruptStreamsApart)
+{
+    const auto data = pattern(100000);
+    const std::string packed = compressed_by_zlib(data);
+
+    ZlibError e = inflate_error(packed.substr(0, packed.size() / 2), data.size());
+    EXPECT_EQ(e.kind(), ZlibError::Kind::input_ended);
+    EXPECT_GT(e.produced(), 0u);
+    EXPECT_LT(e.produced(), data.size());
+
+    e = inflate_error(packed, data.size() + 10);  // a header wanting more than the stream holds
+    EXPECT_EQ(e.kind(), ZlibError::Kind::ended_early);
+    EXPECT_EQ(e.produced(), data.size());
+
+    std::string bad = packed;
+    bad[bad.size() - 1] = char(bad[bad.size() - 1] ^ 0x21);  // the adler-32 checksum
+    e = inflate_error(bad, data.size());
+    EXPECT_EQ(e.kind(), ZlibError::Kind::corrupt);
+    EXPECT_NE(std::string(e.what()).find("check"), std::string::npos) << e.what();  // zlib: "incorrect data check"
+
+    e = inflate_error(std::string(64, '\xff'), data.size());
+    EXPECT_EQ(e.kind(), ZlibError::Kind::corrupt);
+
+    e = inflate_error("", data.size());
+    EXPECT_EQ(e.kind(), ZlibError::Kind::input_ended);
+    EXPECT_EQ(e.produced(), 0u);
+}
+
+}  // namespace
+}  // namespace echosim::io
