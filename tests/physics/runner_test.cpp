@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "physics/physics_fixture.hpp"
+#include "physics/simulation.hpp"
 #include "physics/triple_buffer.hpp"
 
 namespace echosim::physics {
@@ -53,19 +54,20 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     const SurfaceSnapshot& snap = runner.latest();
     EXPECT_EQ(snap.step, 50);
 
-    const Scene scene = make_scene(m);
-    TissueState s = make_state(m, o, scene);
+    // by hand, on the runner's own compiled model
+    Simulation sim(runner.compiled());
+    TissueState& s = sim.state;
     s.probe.active = true;
     s.probe.position = c.position;
     s.probe.orientation = c.orientation;
-    for (int i = 0; i < 50; ++i) step(m, o, scene, s);
+    for (int i = 0; i < 50; ++i) sim.step();
     for (Eigen::Index i = 0; i < s.x.size(); ++i) ASSERT_EQ(snap.positions[std::size_t(i)], float(s.x[i]));
     EXPECT_DOUBLE_EQ(snap.probe_force_N, s.last.probe_force_N);
     EXPECT_GT(snap.probe_force_N, 0.5);
 
     // the haptic thread's hand-off: the local model of that same step
     const LocalContactModel& local = runner.latest_contact();
-    const LocalContactModel expected = local_contact_model(scene.penalty, s);
+    const LocalContactModel expected = local_contact_model(*sim.model, s);
     EXPECT_EQ(local.step, 50);
     EXPECT_TRUE(local.in_contact);
     EXPECT_DOUBLE_EQ(local.force, s.last.probe_force_N);
