@@ -12,7 +12,7 @@
 
 #include "bench/suites.hpp"
 #include "core/assets.hpp"
-#include "physics/step.hpp"
+#include "physics/simulation.hpp"
 #include "scene/leg.hpp"
 #include "tissue/tissue_json.hpp"
 
@@ -25,9 +25,7 @@ struct PhysicsFixture {
 };
 
 struct Run {
-    tissue::TissueModel model;
-    physics::Scene scene;
-    physics::TissueState state;
+    physics::Simulation sim;
     Pose rest;
 };
 
@@ -38,7 +36,7 @@ void place_probe(Run& r, double t)
 {
     const double press = 10.0 * std::min(1.0, t / 0.1);
     const double slide = 20.0 * std::max(0.0, t - 0.1);
-    auto& p = r.state.probe;
+    auto& p = r.sim.state.probe;
     p.active = true;
     p.orientation = Eigen::Quaterniond(r.rest.orientation.w, r.rest.orientation.x, r.rest.orientation.y, r.rest.orientation.z);
     const Eigen::Vector3d origin(r.rest.position.x, r.rest.position.y, r.rest.position.z);
@@ -48,10 +46,8 @@ void place_probe(Run& r, double t)
 
 Run make_run(const PhysicsFixture& f, int refine, const physics::PhysicsOptions& o)
 {
-    Run r{tissue::build_tissue_model(f.leg, f.fitted, refine), {}, {}, f.leg.probe_rest_pose(0.5f, 0.5f)};
-    r.scene = physics::make_scene(r.model);
-    r.state = physics::make_state(r.model, o, r.scene);
-    return r;
+    return Run{physics::Simulation(physics::compile_model(tissue::build_tissue_model(f.leg, f.fitted, refine), o)),
+               f.leg.probe_rest_pose(0.5f, 0.5f)};
 }
 
 // Simulates `seconds`; false if the state had to be reset (unstable).
@@ -60,8 +56,8 @@ bool stable_for(const PhysicsFixture& f, int refine, physics::PhysicsOptions o, 
     Run r = make_run(f, refine, o);
     for (double t = 0; t < seconds; t += o.time_step) {
         place_probe(r, t);
-        physics::step(r.model, o, r.scene, r.state);
-        if (r.state.resets > 0) return false;
+        r.sim.step();
+        if (r.sim.state.resets > 0) return false;
     }
     return true;
 }
@@ -79,24 +75,25 @@ void physics_steps(benchmark::State& state, const PhysicsFixture& f, int refine,
     double t = 0;
     for (; t < 0.15; t += o.time_step) {  // warm-up: the probe is in and contacts are established
         place_probe(r, t);
-        physics::step(r.model, o, r.scene, r.state);
+        r.sim.step();
     }
+    const physics::TissueState& s = r.sim.state;
     long cg = 0, steps = 0;
     for (auto _ : state) {
         place_probe(r, t);
-        physics::step(r.model, o, r.scene, r.state);
+        r.sim.step();
         t += o.time_step;
-        cg += r.state.last.cg_iterations;
+        cg += s.last.cg_iterations;
         ++steps;
     }
-    state.counters["nodes"] = double(r.model.node_count());
+    state.counters["nodes"] = double(r.sim.model->node_count());
     state.counters["steps_per_s"] = benchmark::Counter(double(steps), benchmark::Counter::kIsRate);
     state.counters["cg_iterations"] = steps ? double(cg) / double(steps) : 0.0;
     state.counters["time_step_s"] = o.time_step;
     state.counters["realtime_factor"] = benchmark::Counter(double(steps) * o.time_step, benchmark::Counter::kIsRate);
-    state.counters["contacts"] = r.state.last.contacts;
-    state.counters["probe_force_N"] = r.state.last.probe_force_N;
-    state.counters["resets"] = r.state.resets;
+    state.counters["contacts"] = s.last.contacts;
+    state.counters["probe_force_N"] = s.last.probe_force_N;
+    state.counters["resets"] = s.resets;
     state.counters["threads"] = o.threads;
     const bool implicit = o.integrator == physics::Integrator::implicit_euler;
     state.SetLabel(std::string("integrator=") + (implicit ? "implicit" : "explicit") +

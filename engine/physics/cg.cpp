@@ -98,12 +98,14 @@ CgVectors make_cg_vectors(std::size_t nodes, int cols, int parts)
     return v;
 }
 
-CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& g, CgVectors& v, ForkJoin& team)
+CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& g, CgVectors& v, ForkJoin& team)
 {
+    const PhysicsOptions& options = model.options;
+    const GridLayout& grid = model.grid;
     CgResult out;
 
     // r = b - A x0 from the warm start; z = P r, the first direction
-    system_product(grid, g, v.dv.data(), v.product.data(), v.rows, team);
+    system_product(model, g, v.dv.data(), v.product.data(), v.rows, team);
     std::array<double, ForkJoin::kMaxParts> partial{};
     team.run([&](int part) {
         const auto [begin, end] = part_nodes(grid, part, team.parts());
@@ -127,7 +129,7 @@ CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& gri
             return out;
         }
         if (out.relative_residual <= options.cg_tolerance) break;
-        const double pap = system_product(grid, g, v.direction.data(), v.product.data(), v.rows, team);
+        const double pap = system_product(model, g, v.direction.data(), v.product.data(), v.rows, team);
         if (!std::isfinite(pap)) {  // (a NaN in the preconditioner or the product would pass for convergence below)
             out.finite = false;
             return out;

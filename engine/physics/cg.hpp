@@ -8,8 +8,8 @@
 
 #include <vector>
 
+#include "physics/compiled_model.hpp"
 #include "physics/grid_system.hpp"
-#include "physics/physics_options.hpp"
 
 namespace echosim::physics {
 
@@ -26,9 +26,8 @@ struct CgResult {
     bool finite = true;
 };
 
-// Solves A dv = rhs for vectors.dv, from its value on entry (rhs is zero at fixed nodes); the
-// passes are shared by `team`.
-CgResult conjugate_gradient(const PhysicsOptions& options, const GridLayout& grid, const GridSystem& system, CgVectors& vectors,
-                            ForkJoin& team);
+// Solves A dv = rhs for vectors.dv, from its value on entry (rhs is zero at fixed nodes), to
+// model.options' tolerance; the passes are shared by `team`.
+CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& system, CgVectors& vectors, ForkJoin& team);
 
 }  // namespace echosim::physics

@@ -110,21 +110,22 @@ ECHOSIM_SIMD_CLONES void spring_run_stored(const SpringRun& r, double lambda, do
 
 // The surface spring-dampers' forces and K v, a row sweep over the grid: each spring computed once
 // (length and direction in double, from the positions' planes), its results to both nodes.
-void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update)
+void spring_forces(const CompiledModel& model, TissueState& s, ForkJoin& team, bool update)
 {
-    const GridLayout& grid = s.grid;
+    const GridLayout& grid = model.grid;
+    const double lambda = model.tissue.lambda, mu = model.tissue.mu;
     const double* x = s.x_planes.data();
     const double* v = s.v_planes.data();
     auto springs = [&](int direction, std::size_t first, int count, const std::array<float*, 6>& out, bool owned) {
         const std::size_t second = first + grid.offset(direction);
         const SpringRun run{x + first, x + second, v + first, v + second, grid.n,
-                            s.spring_rest.plane(direction, 0) + first, s.spring_rest.plane(direction, 1) + first,
+                            model.spring_rest.plane(direction, 0) + first, model.spring_rest.plane(direction, 1) + first,
                             s.spring_linearisation.plane(direction, 0) + first, s.spring_linearisation.plane(direction, 1) + first,
                             s.spring_linearisation.plane(direction, 2) + first, s.spring_linearisation.plane(direction, 3) + first,
                             out, count};
-        if (!update) spring_run_stored(run, model.lambda, model.mu);
-        else if (owned) spring_run_storing(run, model.lambda, model.mu);
-        else spring_run_updating(run, model.lambda, model.mu);
+        if (!update) spring_run_stored(run, lambda, mu);
+        else if (owned) spring_run_storing(run, lambda, mu);
+        else spring_run_updating(run, lambda, mu);
     };
     double* force = s.force.data();
     double* kv = s.stiffness_v.data();
@@ -135,7 +136,6 @@ void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update
                 kv[3 * (base + std::size_t(k)) + c] = double(sum[3 + c][k]);
             }
     };
-    ForkJoin& team = *s.team;
     team.run([&](int part) {
         const auto [begin, end] = part_rows(grid, part, team.parts());
         sweep_rows(grid, int(begin), int(end), s.spring_rows[std::size_t(part)], springs, nodes);
@@ -144,62 +144,66 @@ void spring_forces(const tissue::TissueModel& model, TissueState& s, bool update
 
 }  // namespace
 
-void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& options, TissueState& s,
-                       bool update_linearisation)
+void accumulate_forces(const CompiledModel& model, TissueState& s, ForkJoin& team, bool update_linearisation)
 {
-    s.team->run([&](int part) {
-        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
+    const GridLayout& grid = model.grid;
+    const tissue::TissueModel& tissue = model.tissue;
+    team.run([&](int part) {
+        const auto [begin, end] = part_nodes(grid, part, team.parts());
         const auto range = Eigen::seq(3 * Eigen::Index(begin), 3 * Eigen::Index(end) - 1);
         s.force(range) = s.external(range);
-        to_planes(s.x.data(), s.grid.n, s.x_planes.data(), begin, end);
-        to_planes(s.v.data(), s.grid.n, s.v_planes.data(), begin, end);
+        to_planes(s.x.data(), grid.n, s.x_planes.data(), begin, end);
+        to_planes(s.v.data(), grid.n, s.v_planes.data(), begin, end);
     });
-    spring_forces(model, s, update_linearisation);
+    spring_forces(model, s, team, update_linearisation);
 
     // the tissue column under each node: the non-linear spring along the normal, shear across it
-    s.team->run([&](int part) {
-        const auto [begin, end] = part_nodes(s.grid, part, s.team->parts());
+    team.run([&](int part) {
+        const auto [begin, end] = part_nodes(grid, part, team.parts());
         for (std::size_t i = begin; i < end; ++i) {
-            NormalLinearisation& lin = s.normals[i];
-            const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - s.rest.segment<3>(3 * Eigen::Index(i));
+            const TissueColumn& col = model.columns[i];
+            const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - model.rest.segment<3>(3 * Eigen::Index(i));
             const Eigen::Vector3d vel = s.v.segment<3>(3 * Eigen::Index(i));
-            const double c = -lin.n.dot(u);  // compression
+            const double c = -col.n.dot(u);  // compression
             double f = 0, slope = 0;
-            normal_spring(c, model.a[i], model.b[i], f, slope);
-            const Eigen::Vector3d lateral = u + c * lin.n, lateral_v = vel - lin.n.dot(vel) * lin.n;
-            s.force.segment<3>(3 * Eigen::Index(i)) += (f - lin.damping * lin.n.dot(vel)) * lin.n - lin.lateral_stiffness * lateral -
-                                                       lin.lateral_damping * lateral_v;
-            s.force.segment<3>(3 * Eigen::Index(i)) += model.mass[i] * 1e-3 * options.gravity;  // kg mm/s^2 to N
-            if (update_linearisation) lin.stiffness = slope;
-            const double along_v = lin.n.dot(vel);
-            s.stiffness_v.segment<3>(3 * Eigen::Index(i)) += lin.lateral_stiffness * (vel - along_v * lin.n) + lin.stiffness * along_v * lin.n;
+            normal_spring(c, tissue.a[i], tissue.b[i], f, slope);
+            const Eigen::Vector3d lateral = u + c * col.n, lateral_v = vel - col.n.dot(vel) * col.n;
+            s.force.segment<3>(3 * Eigen::Index(i)) += (f - col.damping * col.n.dot(vel)) * col.n - col.lateral_stiffness * lateral -
+                                                       col.lateral_damping * lateral_v;
+            s.force.segment<3>(3 * Eigen::Index(i)) += tissue.mass[i] * 1e-3 * model.options.gravity;  // kg mm/s^2 to N
+            if (update_linearisation) s.normal_stiffness[i] = slope;
+            const double along_v = col.n.dot(vel);
+            s.stiffness_v.segment<3>(3 * Eigen::Index(i)) +=
+                col.lateral_stiffness * (vel - along_v * col.n) + s.normal_stiffness[i] * along_v * col.n;
         }
     });
 }
 
-double potential_energy(const tissue::TissueModel& model, const TissueState& s)
+double potential_energy(const CompiledModel& model, const TissueState& s)
 {
+    const tissue::TissueModel& tissue = model.tissue;
     double e = 0;
-    for (const tissue::Spring& sp : model.springs) {
+    for (const tissue::Spring& sp : tissue.springs) {
         const double stretch = (s.x.segment<3>(3 * Eigen::Index(sp.j)) - s.x.segment<3>(3 * Eigen::Index(sp.i))).norm() - sp.rest_length;
-        e += 0.5 * model.lambda * stretch * stretch;
+        e += 0.5 * tissue.lambda * stretch * stretch;
     }
     for (std::size_t i = 0; i < model.node_count(); ++i) {
-        const NormalLinearisation& lin = s.normals[i];
-        const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - s.rest.segment<3>(3 * Eigen::Index(i));
-        const double c = -lin.n.dot(u);
+        const TissueColumn& col = model.columns[i];
+        const Eigen::Vector3d u = s.x.segment<3>(3 * Eigen::Index(i)) - model.rest.segment<3>(3 * Eigen::Index(i));
+        const double c = -col.n.dot(u);
         // integral of c / (b - a c) dc = -c/a - b/a^2 ln(1 - a c / b)
-        const double a = model.a[i], b = model.b[i];
+        const double a = tissue.a[i], b = tissue.b[i];
         e += a > 1e-12 ? -c / a - b / (a * a) * std::log1p(-a * c / b) : 0.5 * c * c / b;
-        e += 0.5 * lin.lateral_stiffness * (u + c * lin.n).squaredNorm();
+        e += 0.5 * col.lateral_stiffness * (u + c * col.n).squaredNorm();
     }
     return e;
 }
 
-double kinetic_energy(const tissue::TissueModel& model, const TissueState& s)
+double kinetic_energy(const CompiledModel& model, const TissueState& s)
 {
     double e = 0;
-    for (std::size_t i = 0; i < model.node_count(); ++i) e += 0.5 * model.mass[i] * 1e-3 * s.v.segment<3>(3 * Eigen::Index(i)).squaredNorm();
+    for (std::size_t i = 0; i < model.node_count(); ++i)
+        e += 0.5 * model.tissue.mass[i] * 1e-3 * s.v.segment<3>(3 * Eigen::Index(i)).squaredNorm();
     return e;  // (kg/1000) (mm/s)^2 = N mm
 }
 

@@ -10,9 +10,9 @@
 // (which would buckle it) is dropped (Choi and Ko 2002).
 #pragma once
 
-#include "physics/physics_options.hpp"
+#include "core/fork_join.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/tissue_state.hpp"
-#include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
 
@@ -20,11 +20,13 @@ namespace echosim::physics {
 // continued linearly beyond, so a violent push cannot make the force infinite.
 inline constexpr double kMaxCompressionFraction = 0.95;
 
-void accumulate_forces(const tissue::TissueModel& model, const PhysicsOptions& options, TissueState& state,
-                       bool update_linearisation);
+// Into state.force and state.stiffness_v; with `update_linearisation`, the linearisation too
+// (state.spring_linearisation, state.normal_stiffness), else the stored one is used. The sweeps are
+// shared by `team`.
+void accumulate_forces(const CompiledModel& model, TissueState& state, ForkJoin& team, bool update_linearisation);
 
 // Potential energy of the springs [N mm = mJ] (for tests of energy decay).
-double potential_energy(const tissue::TissueModel& model, const TissueState& state);
-double kinetic_energy(const tissue::TissueModel& model, const TissueState& state);
+double potential_energy(const CompiledModel& model, const TissueState& state);
+double kinetic_energy(const CompiledModel& model, const TissueState& state);
 
 }  // namespace echosim::physics

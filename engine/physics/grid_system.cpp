@@ -57,10 +57,11 @@ ECHOSIM_SIMD_CLONES void sum_diagonal_blocks(const GridLayout& grid, GridSystem&
 // In place over the `inverse` planes: each node's symmetric 3 x 3 block (xx yy zz xy xz yz) replaced
 // by its inverse, and by zero at fixed nodes. In double: the determinant sums products of three
 // entries of about 1e-9, which float would round badly.
-ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, GridSystem& g, std::size_t begin, std::size_t end)
+ECHOSIM_SIMD_CLONES void invert_blocks(std::size_t n, const std::vector<float>& free_mask, GridSystem& g, std::size_t begin,
+                                       std::size_t end)
 {
     float* __restrict m = g.inverse.data();
-    const float* __restrict free = g.free.data();
+    const float* __restrict free = free_mask.data();
 #pragma omp simd
     for (std::size_t i = begin; i < end; ++i) {
         const double a = m[i], b = m[n + i], c = m[2 * n + i], d = m[3 * n + i], e = m[4 * n + i], f = m[5 * n + i];
@@ -105,34 +106,33 @@ ECHOSIM_SIMD_CLONES void spring_blocks(const SpringPlanes& linearisation, double
 
 }  // namespace
 
-GridSystem make_grid_system(const GridLayout& grid, const std::vector<std::uint8_t>& fixed)
+GridSystem make_grid_system(const GridLayout& grid)
 {
     GridSystem g;
     g.springs = make_spring_planes(grid, 4);
     g.diagonal.assign(6 * grid.n, 0.0f);
     g.inverse.assign(6 * grid.n, 0.0f);
-    g.free.resize(grid.n);
-    for (std::size_t i = 0; i < grid.n; ++i) g.free[i] = fixed[i] ? 0.0f : 1.0f;
     g.contacts.reserve(1024);
     return g;
 }
 
-void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw& law, const TissueState& s, double h,
-                    GridSystem& g, ForkJoin& team)
+void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem& g, ForkJoin& team)
 {
-    const double h2 = h * h;
-    const std::size_t n = s.grid.n;
+    const double h = model.options.time_step, h2 = h * h;
+    const tissue::TissueModel& tissue = model.tissue;
+    const GridLayout& grid = model.grid;
+    const std::size_t n = grid.n;
     const int parts = team.parts();
 
     team.run([&](int part) {
-        const auto [begin, end] = part_nodes(s.grid, part, parts);
-        spring_blocks(s.spring_linearisation, model.lambda, model.mu, h, g.springs, begin, end);
+        const auto [begin, end] = part_nodes(grid, part, parts);
+        spring_blocks(s.spring_linearisation, tissue.lambda, tissue.mu, h, g.springs, begin, end);
         // mass and the tissue column: (m + k_t) I + (k_n - k_t) n n^T, h folded into k_n and k_t
         for (std::size_t i = begin; i < end; ++i) {
-            const NormalLinearisation& lin = s.normals[i];
-            const double k_n = h2 * lin.stiffness + h * lin.damping, k_t = h2 * lin.lateral_stiffness + h * lin.lateral_damping;
-            const double iso = model.mass[i] * 1e-3 + k_t, along = k_n - k_t;
-            const Eigen::Vector3d& nn = lin.n;
+            const TissueColumn& col = model.columns[i];
+            const double k_n = h2 * s.normal_stiffness[i] + h * col.damping, k_t = h2 * col.lateral_stiffness + h * col.lateral_damping;
+            const double iso = tissue.mass[i] * 1e-3 + k_t, along = k_n - k_t;
+            const Eigen::Vector3d& nn = col.n;
             const double block[6] = {iso + along * nn.x() * nn.x(), iso + along * nn.y() * nn.y(), iso + along * nn.z() * nn.z(),
                                      along * nn.x() * nn.y(),       along * nn.x() * nn.z(),       along * nn.y() * nn.z()};
             for (int c = 0; c < 6; ++c) g.diagonal[std::size_t(c) * n + i] = float(block[c]);
@@ -140,13 +140,13 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
     });
 
     // contacts: (h^2 + h tau) k (w a)(w a)^T
-    const double scale = h2 + h * law.damping_time;
+    const double scale = h2 + h * model.penalty.damping_time;
     g.contacts.clear();
     for (const contact::Contact& c : s.contacts.contacts) {
         const double root = std::sqrt(scale * c.stiffness);
         // g is zero at a fixed node, whose row of A is the identity on zero (p is zero there)
         std::array<float, 3> weights;
-        for (int k = 0; k < 3; ++k) weights[std::size_t(k)] = float(root * c.weights[k]) * g.free[c.nodes[std::size_t(k)]];
+        for (int k = 0; k < 3; ++k) weights[std::size_t(k)] = float(root * c.weights[k]) * model.free[c.nodes[std::size_t(k)]];
         g.contacts.push_back({c.nodes, weights});
     }
     for (int c = 0; c < 3; ++c) g.axis[std::size_t(c)] = float(s.contacts.axis[c]);
@@ -154,8 +154,8 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
     // the block-Jacobi preconditioner: each node's whole diagonal block (its own, and every spring
     // and contact that touches it) summed into `inverse`, then inverted there
     team.run([&](int part) {
-        const auto [begin, end] = part_nodes(s.grid, part, parts);
-        sum_diagonal_blocks(s.grid, g, begin, end);
+        const auto [begin, end] = part_nodes(grid, part, parts);
+        sum_diagonal_blocks(grid, g, begin, end);
     });
     const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
     const float aa[6] = {ax * ax, ay * ay, az * az, ax * ay, ax * az, ay * az};
@@ -163,16 +163,16 @@ void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw&
         for (int k = 0; k < 3; ++k)
             for (int e = 0; e < 6; ++e) g.inverse[std::size_t(e) * n + c.nodes[std::size_t(k)]] += c.g[std::size_t(k)] * c.g[std::size_t(k)] * aa[e];
     team.run([&](int part) {
-        const auto [begin, end] = part_nodes(s.grid, part, parts);
-        invert_blocks(n, g, begin, end);
+        const auto [begin, end] = part_nodes(grid, part, parts);
+        invert_blocks(n, model.free, g, begin, end);
     });
 }
 
 namespace {
 
 // A p over rows [row_begin, row_end), springs and nodes but not contacts; returns their p . out.
-ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const GridSystem& g, const float* p, float* out, RowBuffers<3>& rows,
-                                        int row_begin, int row_end)
+ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const std::vector<float>& free, const GridSystem& g, const float* p,
+                                        float* out, RowBuffers<3>& rows, int row_begin, int row_end)
 {
     const std::size_t n = grid.n;
     const float* px = p;
@@ -216,7 +216,7 @@ ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const GridSystem
         const float* __restrict d3 = d0 + 3 * n;
         const float* __restrict d4 = d0 + 4 * n;
         const float* __restrict d5 = d0 + 5 * n;
-        const float* __restrict mask = g.free.data() + base;
+        const float* __restrict mask = free.data() + base;
         const float* __restrict rx = px + base;
         const float* __restrict ry = py + base;
         const float* __restrict rz = pz + base;
@@ -245,13 +245,14 @@ ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const GridSystem
 
 }  // namespace
 
-double system_product(const GridLayout& grid, const GridSystem& g, const float* p, float* out, std::vector<RowBuffers<3>>& rows,
-                      ForkJoin& team)
+double system_product(const CompiledModel& model, const GridSystem& g, const float* p, float* out,
+                      std::vector<RowBuffers<3>>& rows, ForkJoin& team)
 {
+    const GridLayout& grid = model.grid;
     std::array<double, ForkJoin::kMaxParts> partial{};
     team.run([&](int part) {
         const auto [begin, end] = part_rows(grid, part, team.parts());
-        partial[std::size_t(part)] = product_rows(grid, g, p, out, rows[std::size_t(part)], int(begin), int(end));
+        partial[std::size_t(part)] = product_rows(grid, model.free, g, p, out, rows[std::size_t(part)], int(begin), int(end));
     });
     double pap = 0;
     for (int part = 0; part < team.parts(); ++part) pap += partial[std::size_t(part)];

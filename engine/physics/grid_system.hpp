@@ -12,7 +12,8 @@
 // a double-precision assembled matrix).
 //
 // Rows of fixed nodes are the identity on zero (Baraff and Witkin's filter): the right-hand side,
-// the preconditioner and so every search direction are zero there, and the product is masked.
+// the preconditioner and so every search direction are zero there, and the product is masked by
+// the compiled model's fixed mask (CompiledModel::free).
 #pragma once
 
 #include <array>
@@ -21,9 +22,9 @@
 
 #include "contact/probe_contact.hpp"
 #include "core/fork_join.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/grid_layout.hpp"
 #include "physics/row_sweep.hpp"
-#include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
 
@@ -44,22 +45,20 @@ struct GridSystem {
     // block-Jacobi preconditioner: per node the inverse of A's whole diagonal block, same planes;
     // zero at fixed nodes
     std::vector<float> inverse;
-    std::vector<float> free;  // 1 at a free node, 0 at a fixed one
     std::array<float, 3> axis{0, 1, 0};  // the probe axis the contacts push along
     std::vector<ContactTerm> contacts;
 };
 
-GridSystem make_grid_system(const GridLayout& grid, const std::vector<std::uint8_t>& fixed);
+GridSystem make_grid_system(const GridLayout& grid);
 
-// Rebuilds the coefficients, the contact terms and the preconditioner for this step, from the
-// force stage's linearisation (state.spring_linearisation, state.normals) and state.contacts.
-// The work is shared by `team`.
-void prepare_system(const tissue::TissueModel& model, const contact::PenaltyLaw& law, const TissueState& state, double h,
-                    GridSystem& system, ForkJoin& team);
+// Rebuilds the coefficients, the contact terms and the preconditioner for a step of
+// model.options.time_step, from the force stage's linearisation (state.spring_linearisation,
+// state.normal_stiffness) and state.contacts. The work is shared by `team`.
+void prepare_system(const CompiledModel& model, const TissueState& state, GridSystem& system, ForkJoin& team);
 
 // out = A p over plane vectors of 3n floats; returns p . out (accumulated in double). The rows are
 // shared by `team`, each part with its row buffers rows[part].
-double system_product(const GridLayout& grid, const GridSystem& system, const float* p, float* out, std::vector<RowBuffers<3>>& rows,
-                      ForkJoin& team);
+double system_product(const CompiledModel& model, const GridSystem& system, const float* p, float* out,
+                      std::vector<RowBuffers<3>>& rows, ForkJoin& team);
 
 }  // namespace echosim::physics

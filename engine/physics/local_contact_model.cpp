@@ -2,8 +2,9 @@
 
 namespace echosim::physics {
 
-LocalContactModel local_contact_model(const contact::PenaltyLaw& law, TissueState& s)
+LocalContactModel local_contact_model(const CompiledModel& model, TissueState& s)
 {
+    const contact::PenaltyLaw& law = model.penalty;
     LocalContactModel m;
     m.time = s.time;
     m.step = s.steps;
@@ -26,15 +27,15 @@ LocalContactModel local_contact_model(const contact::PenaltyLaw& law, TissueStat
             const double k_pen = penalty[i];
             if (k_pen <= 0.0) continue;  // done already (or a sample at zero weight)
             penalty[i] = 0.0;
-            if (s.fixed[i]) {  // held to the leg: the penalty alone
+            if (model.fixed(i)) {  // held to the leg: the penalty alone
                 m.stiffness += k_pen;
                 m.damping += law.damping_time * k_pen;
                 continue;
             }
-            const NormalLinearisation& lin = s.normals[i];
-            const double along = lin.n.dot(m.axis), along2 = along * along;
-            const double k_col = lin.stiffness * along2 + lin.lateral_stiffness * (1.0 - along2);
-            const double d_col = lin.damping * along2 + lin.lateral_damping * (1.0 - along2);
+            const TissueColumn& col = model.columns[i];
+            const double along = col.n.dot(m.axis), along2 = along * along;
+            const double k_col = s.normal_stiffness[i] * along2 + col.lateral_stiffness * (1.0 - along2);
+            const double d_col = col.damping * along2 + col.lateral_damping * (1.0 - along2);
             const double d_pen = law.damping_time * k_pen;
             m.stiffness += k_pen * k_col / (k_pen + k_col);
             m.damping += d_pen * d_col / (d_pen + d_col);

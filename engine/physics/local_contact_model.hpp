@@ -17,9 +17,8 @@
 
 #include <Eigen/Core>
 
-#include "contact/probe_contact.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/tissue_state.hpp"
-#include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
 
@@ -42,8 +41,8 @@ struct LocalContactModel {
     }
 };
 
-// The model of the state's last step (contacts found, linearisation up to date). Uses
+// The model of the state's last step on `model` (contacts found, linearisation up to date). Uses
 // state.node_scratch; allocates nothing.
-LocalContactModel local_contact_model(const contact::PenaltyLaw& law, TissueState& state);
+LocalContactModel local_contact_model(const CompiledModel& model, TissueState& state);
 
 }  // namespace echosim::physics

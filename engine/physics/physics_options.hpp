@@ -1,5 +1,6 @@
 // The immutable parameters of the dynamics (paper §4), apart from the tissue model's own and from
-// the mutable state. Units: mm, s, N, kg.
+// the mutable state; compiled with the tissue model into the CompiledModel (compiled_model.hpp).
+// Units: mm, s, N, kg.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,8 +41,9 @@ struct PhysicsOptions {
     // threads that share a step's sweeps (the physics thread and threads - 1 more, which spin
     // between the step's passes). One is right where the physics thread must leave the other
     // cores to rendering and haptics; more pay off on large patches (bench/RESULTS.md), never more
-    // than there are free cores. Read when the state is made (make_state starts the team). Results
-    // repeat bit for bit for a given count; between counts they agree to the CG tolerance.
+    // than there are free cores. The team belongs to whoever steps (PhysicsRunner, Simulation) and has
+    // this many parts; a state's buffers are sized for it. Results repeat bit for bit for a given
+    // count; between counts they agree to the CG tolerance.
     int threads = 1;
 };
 

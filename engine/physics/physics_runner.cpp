@@ -7,20 +7,29 @@
 namespace echosim::physics {
 namespace {
 
-SurfaceSnapshot prototype(const tissue::TissueModel& model)
+SurfaceSnapshot prototype(const CompiledModel& model)
 {
     SurfaceSnapshot s;
-    s.positions.resize(3 * model.node_count());
-    for (std::size_t i = 0; i < model.node_count(); ++i)
-        for (int c = 0; c < 3; ++c) s.positions[3 * i + std::size_t(c)] = float(model.positions[i][c]);
+    s.positions.resize(std::size_t(model.rest.size()));
+    for (Eigen::Index i = 0; i < model.rest.size(); ++i) s.positions[std::size_t(i)] = float(model.rest[i]);
     return s;
+}
+
+const std::shared_ptr<const CompiledModel>& checked(const std::shared_ptr<const CompiledModel>& model)
+{
+    if (!model) throw std::invalid_argument("PhysicsRunner: no compiled model");
+    return model;
 }
 
 }  // namespace
 
 PhysicsRunner::PhysicsRunner(const tissue::TissueModel& model, const PhysicsOptions& options)
-    : model_(model), options_(options), scene_(make_scene(model)), state_(make_state(model, options, scene_)),
-      out_(prototype(model))
+    : PhysicsRunner(compile_model(model, options))
+{
+}
+
+PhysicsRunner::PhysicsRunner(std::shared_ptr<const CompiledModel> model)
+    : model_(checked(model)), state_(make_state(*model_)), team_(model_->options.threads), out_(prototype(*model_))
 {
 }
 
@@ -53,7 +62,7 @@ void PhysicsRunner::step_once()
     state_.probe.position = c.position;
     state_.probe.orientation = c.orientation;
     state_.probe.velocity = c.velocity;
-    step(model_, options_, scene_, state_);
+    step(*model_, state_, team_);
 
     SurfaceSnapshot& s = out_.write_slot();
     s.time = state_.time;
@@ -64,7 +73,7 @@ void PhysicsRunner::step_once()
     s.cg_iterations = state_.last.cg_iterations;
     s.resets = state_.resets;
     out_.publish();
-    contact_out_.write_slot() = local_contact_model(scene_.penalty, state_);
+    contact_out_.write_slot() = local_contact_model(*model_, state_);
     contact_out_.publish();
     steps_.fetch_add(1, std::memory_order_relaxed);
 }
@@ -72,7 +81,7 @@ void PhysicsRunner::step_once()
 void PhysicsRunner::step_to(double t)
 {
     if (running_) throw std::logic_error("PhysicsRunner::step_to while the physics thread runs");
-    while (state_.time + 0.5 * options_.time_step < t) step_once();
+    while (state_.time + 0.5 * model_->options.time_step < t) step_once();
 }
 
 void PhysicsRunner::start()
@@ -80,7 +89,7 @@ void PhysicsRunner::start()
     if (running_.exchange(true)) return;
     thread_ = std::thread([this] {
         using clock = std::chrono::steady_clock;
-        const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(options_.time_step));
+        const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(model_->options.time_step));
         auto due = clock::now();
         while (running_.load(std::memory_order_relaxed)) {
             step_once();

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -17,6 +18,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/fork_join.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/local_contact_model.hpp"
 #include "physics/physics_options.hpp"
 #include "physics/step.hpp"
@@ -55,7 +58,10 @@ struct RunnerStats {
 
 class PhysicsRunner {
 public:
+    // compiles the model (compile_model: a copy, so the caller's need not outlive the runner)
     PhysicsRunner(const tissue::TissueModel& model, const PhysicsOptions& options);
+    // steps a compiled model that others (tests, benches, a second runner) may share
+    explicit PhysicsRunner(std::shared_ptr<const CompiledModel> model);
     ~PhysicsRunner();
     PhysicsRunner(const PhysicsRunner&) = delete;
     PhysicsRunner& operator=(const PhysicsRunner&) = delete;
@@ -77,15 +83,16 @@ public:
     void stop();
     RunnerStats stats() const { return {steps_.load(), overruns_.load(), refused_.load()}; }
 
-    const tissue::TissueModel& model() const { return model_; }
+    // the immutable model it steps (any thread), and the tissue model that was compiled
+    const std::shared_ptr<const CompiledModel>& compiled() const { return model_; }
+    const tissue::TissueModel& model() const { return model_->tissue; }
 
 private:
     void step_once();
 
-    const tissue::TissueModel& model_;
-    PhysicsOptions options_;
-    Scene scene_;
+    std::shared_ptr<const CompiledModel> model_;
     TissueState state_;  // owned by whichever thread steps: the physics thread while it runs
+    ForkJoin team_;      // execution: the threads that share a step (model_->options.threads), driven by that same thread
     TripleBuffer<ProbeCommand> in_;
     TripleBuffer<SurfaceSnapshot> out_;
     TripleBuffer<LocalContactModel> contact_out_;

@@ -4,28 +4,20 @@
 //   3. implicit: solve (M + h D + h^2 K) dv = h (f - h K v) by PCG (cg.cpp), then v += dv,
 //      x += h v; explicit: v += h M^-1 f, x += h v
 //   4. guard: a NaN or a node faster than options.max_speed resets the state to rest and is counted
+// The model is read only (compiled_model.hpp); the state is written (tissue_state.hpp); the team is
+// execution, the caller's: whoever steps owns it (PhysicsRunner, or a Simulation, simulation.hpp).
 #pragma once
 
-#include <array>
-#include <cstdint>
-#include <vector>
-
-#include "contact/probe_contact.hpp"
-#include "physics/physics_options.hpp"
+#include "core/fork_join.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/tissue_state.hpp"
-#include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
 
-// What a step needs besides the model and the state: the surface triangles and the probe's shape.
-struct Scene {
-    contact::PatchSurface surface;
-    contact::ProbeGeometry probe;
-    contact::PenaltyLaw penalty;
-};
-
-Scene make_scene(const tissue::TissueModel& model);
-
-void step(const tissue::TissueModel& model, const PhysicsOptions& options, const Scene& scene, TissueState& state);
+// Steps `state` by model.options.time_step, the sweeps shared by `team`. The team must have
+// model.options.threads parts and the state must be made for `model` (make_state): both checked on
+// entry, before anything is touched (std::invalid_argument: a wiring error, not a run-time
+// condition; the step itself never throws and allocates nothing).
+void step(const CompiledModel& model, TissueState& state, ForkJoin& team);
 
 }  // namespace echosim::physics

@@ -1,37 +1,26 @@
-// The mutable state of the tissue dynamics, apart from the immutable TissueModel and
-// PhysicsOptions (MuJoCo's mjData beside mjModel). Every buffer a step needs is allocated here,
-// when the state is made, so a step allocates nothing.
+// The mutable state of the tissue dynamics, apart from the immutable CompiledModel (MuJoCo's mjData
+// beside mjModel): what changes from step to step, and the solver's per-step coefficients and
+// scratch. Every buffer a step needs is allocated here, when the state is made, so a step allocates
+// nothing. What is derived from the model (rest positions, masses, the fixed mask, the grid, the
+// springs' rest lengths, the tissue columns' constants) is the compiled model's; the threads that
+// share a step are the caller's (step.hpp).
 //
 // Layout: positions, velocities and forces as Eigen vectors of 3n doubles (node i at 3i..3i+2).
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "contact/probe_contact.hpp"
-#include "core/fork_join.hpp"
 #include "physics/cg.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/grid_layout.hpp"
 #include "physics/grid_system.hpp"
-#include "physics/physics_options.hpp"
 #include "physics/row_sweep.hpp"
-#include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {
-
-// Per-node support by the tissue column: the non-linear spring along the rest normal n (the paper's
-// eq. 1) and a linear shear spring across it. Blocks: stiffness (k n n^T + k_t (I - n n^T)),
-// damping (d n n^T + d_t (I - n n^T)).
-struct NormalLinearisation {
-    Eigen::Vector3d n = Eigen::Vector3d::UnitY();  // outward rest normal
-    double stiffness = 0;          // k = dF/dc [N/mm], updated with the compression
-    double damping = 0;            // d [N s/mm]
-    double lateral_stiffness = 0;  // k_t [N/mm]
-    double lateral_damping = 0;    // d_t [N s/mm]
-};
 
 struct StepStats {
     int cg_iterations = 0;
@@ -44,16 +33,10 @@ struct TissueState {
     double time = 0;                 // [s]
     Eigen::VectorXd x, v;            // positions [mm], velocities [mm/s]
     Eigen::VectorXd external;        // forces applied from outside (tests, haptics) [N]
-    Eigen::VectorXd rest;                  // rest positions [mm]
-    std::vector<double> inv_mass_scaled;   // 1 / m, m in N s^2/mm (kg / 1000: F = m a in N and mm/s^2)
-    std::vector<std::uint8_t> fixed;       // rim nodes held to the leg
-    contact::ProbeState probe;             // where the probe is, set by the caller before a step
-    contact::ContactSet contacts;          // filled by the contact stage
+    contact::ProbeState probe;       // where the probe is, set by the caller before a step
+    contact::ContactSet contacts;    // filled by the contact stage
 
-    GridLayout grid;           // the model's springs as the grid's (grid_layout.hpp)
-    SpringPlanes spring_rest;  // per spring: rest length [mm], and 1 where the spring exists
-
-    // scratch of the solver stages (sized once)
+    // scratch of the solver stages (sized once, for the model's options.threads parts)
     Eigen::VectorXd force;
     Eigen::VectorXd stiffness_v;  // K v, for the implicit step's right-hand side h (f - h K v)
     std::vector<double> node_scratch;  // one per node, zero between uses (local_contact_model)
@@ -65,22 +48,20 @@ struct TissueState {
     // direction e from the first node to the second; K_s = lambda (beta I + (1 - beta) e e^T),
     // D_s = mu e e^T
     SpringPlanes spring_linearisation;
-    std::vector<NormalLinearisation> normals;
+    // per node, the tissue column's non-linear spring stiffness k = dF/dc [N/mm] at the compression
+    // of the last linearisation (the column's constants are the model's: CompiledModel::columns)
+    std::vector<double> normal_stiffness;
     bool constant_jacobian_ready = false;
-
-    // the threads that share a step's sweeps (PhysicsOptions::threads); execution, not state, but
-    // owned here so that a step needs nothing beyond the model, options, scene and state
-    std::unique_ptr<ForkJoin> team;
 
     StepStats last;
     int resets = 0;   // NaNs and explosions detected and recovered from
     std::int64_t steps = 0;
 };
 
-struct Scene;
-TissueState make_state(const tissue::TissueModel& model, const PhysicsOptions& options, const Scene& scene);
+// A state at rest for `model`, with buffers for a team of model.options.threads parts.
+TissueState make_state(const CompiledModel& model);
 
-// Back to rest: positions, velocities and time; counters kept.
-void reset_to_rest(TissueState& state);
+// Back to rest: positions and velocities (and the solver's warm start); time and counters kept.
+void reset_to_rest(const CompiledModel& model, TissueState& state);
 
 }  // namespace echosim::physics

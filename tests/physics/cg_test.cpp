@@ -17,23 +17,25 @@ TEST_P(CgThreads, SolvesTheAssembledSystem)
 {
     DeformedPatch d(GetParam());
     const double h = d.options.time_step;
-    prepare_system(d.model, d.scene.penalty, d.state, h, d.state.system, *d.state.team);
+    prepare_system(d.compiled, d.state, d.state.system, d.team);
     Eigen::MatrixXd a = assemble(d, 1.0, h, h * h);
-    for (std::size_t i = 0; i < d.state.fixed.size(); ++i)
-        if (d.state.fixed[i]) {  // Baraff and Witkin's filter: the identity
+    for (std::size_t i = 0; i < d.model.node_count(); ++i)
+        if (d.model.boundary[i]) {  // Baraff and Witkin's filter: the identity
             a.middleRows(3 * Eigen::Index(i), 3).setZero();
             a.middleCols(3 * Eigen::Index(i), 3).setZero();
             a.block<3, 3>(3 * Eigen::Index(i), 3 * Eigen::Index(i)).setIdentity();
         }
     Eigen::VectorXd b = h * d.state.force;
-    for (std::size_t i = 0; i < d.state.fixed.size(); ++i)
-        if (d.state.fixed[i]) b.segment<3>(3 * Eigen::Index(i)).setZero();
+    for (std::size_t i = 0; i < d.model.node_count(); ++i)
+        if (d.model.boundary[i]) b.segment<3>(3 * Eigen::Index(i)).setZero();
 
+    // the same model, solved to a tighter tolerance
     PhysicsOptions o = d.options;
     o.cg_tolerance = 1e-5;
+    const auto tight = compile_model(d.model, o);
     d.state.cg.rhs = planes_of(b);
     std::fill(d.state.cg.dv.begin(), d.state.cg.dv.end(), 0.0f);
-    const CgResult r = conjugate_gradient(o, d.state.grid, d.state.system, d.state.cg, *d.state.team);
+    const CgResult r = conjugate_gradient(*tight, d.state.system, d.state.cg, d.team);
     EXPECT_TRUE(r.finite);
     EXPECT_LT(r.iterations, o.cg_max_iterations);
     const Eigen::VectorXd x = interleaved_of(d.state.cg.dv);
@@ -47,11 +49,11 @@ TEST_P(CgThreads, ANanInTheSystemIsReportedNotTakenForConvergence)
 {
     DeformedPatch d(GetParam());
     const double h = d.options.time_step;
-    prepare_system(d.model, d.scene.penalty, d.state, h, d.state.system, *d.state.team);
+    prepare_system(d.compiled, d.state, d.state.system, d.team);
     d.state.system.inverse[40] = std::nanf("");  // a free node's preconditioner block
     d.state.cg.rhs = planes_of(h * d.state.force);
     std::fill(d.state.cg.dv.begin(), d.state.cg.dv.end(), 0.0f);
-    EXPECT_FALSE(conjugate_gradient(d.options, d.state.grid, d.state.system, d.state.cg, *d.state.team).finite);
+    EXPECT_FALSE(conjugate_gradient(d.compiled, d.state.system, d.state.cg, d.team).finite);
 }
 
 INSTANTIATE_TEST_SUITE_P(Cg, CgThreads, ::testing::Values(1, 3));

@@ -13,6 +13,7 @@
 #include "physics/forces.hpp"
 #include "physics/grid_layout.hpp"
 #include "physics/physics_fixture.hpp"
+#include "physics/simulation.hpp"
 #include "physics/step.hpp"
 #include "tissue/nonlinear_spring.hpp"
 
@@ -21,17 +22,19 @@ namespace echosim::physics::test_support {
 inline Eigen::Vector3d node(const Eigen::VectorXd& v, std::size_t i) { return v.segment<3>(3 * Eigen::Index(i)); }
 
 // A 15 x 15 patch. `internal_force` is the force stage's result, before the contacts add theirs.
+// `model` and `options` are the definitions the reference is built from; `sim` steps their
+// compilation.
 struct DeformedPatch {
     tissue::TissueModel model = test::shipped_model(2);
-    Scene scene = make_scene(model);
     PhysicsOptions options;
-    TissueState state;
+    Simulation sim;
+    TissueState& state = sim.state;
+    const CompiledModel& compiled = *sim.model;
+    ForkJoin& team = *sim.team;
     Eigen::VectorXd internal_force;
 
-    explicit DeformedPatch(int threads)
+    explicit DeformedPatch(int threads) : options(with_threads(threads)), sim(compile_model(model, options))
     {
-        options.threads = threads;
-        state = make_state(model, options, scene);
         std::mt19937 rng(7);
         std::uniform_real_distribution<double> jitter(-0.3, 0.3), speed(-20.0, 20.0), push(-0.01, 0.01);
         for (Eigen::Index k = 0; k < state.x.size(); ++k) {
@@ -44,9 +47,17 @@ struct DeformedPatch {
         state.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
         state.probe.position =
             Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 4.0 * (state.probe.orientation * Eigen::Vector3d::UnitY());
-        accumulate_forces(model, options, state, true);
+        accumulate_forces(compiled, state, team, true);
         internal_force = state.force;
-        contact::collide(scene.probe, scene.penalty, state.probe, scene.surface, state.x, state.v, state.contacts, state.force);
+        contact::collide(compiled.probe, compiled.penalty, state.probe, compiled.surface, state.x, state.v, state.contacts,
+                         state.force);
+    }
+
+    static PhysicsOptions with_threads(int threads)
+    {
+        PhysicsOptions o;
+        o.threads = threads;
+        return o;
     }
 };
 
@@ -90,7 +101,7 @@ inline Eigen::MatrixXd assemble(const DeformedPatch& d, double sm, double sd, do
     }
     for (std::size_t i = 0; i < m.node_count(); ++i) {
         const Column c = column(d, i);
-        const double compression = -c.n.dot(node(s.x, i) - node(s.rest, i));
+        const double compression = -c.n.dot(node(s.x, i) - Eigen::Vector3d(m.positions[i].x, m.positions[i].y, m.positions[i].z));
         EXPECT_LT(compression, kMaxCompressionFraction * tissue::spring_limit(m.a[i], m.b[i]));
         const double k = tissue::spring_stiffness(compression, m.a[i], m.b[i]);
         const Eigen::Matrix3d nnt = c.n * c.n.transpose();
@@ -101,7 +112,7 @@ inline Eigen::MatrixXd assemble(const DeformedPatch& d, double sm, double sd, do
         for (int p = 0; p < 3; ++p)
             for (int q = 0; q < 3; ++q)
                 add(c.nodes[std::size_t(p)], c.nodes[std::size_t(q)],
-                    (sk + sd * d.scene.penalty.damping_time) * c.stiffness * c.weights[p] * c.weights[q] * axis * axis.transpose());
+                    (sk + sd * d.compiled.penalty.damping_time) * c.stiffness * c.weights[p] * c.weights[q] * axis * axis.transpose());
     return a;
 }
 

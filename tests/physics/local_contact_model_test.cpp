@@ -6,16 +6,14 @@
 #include <gtest/gtest.h>
 
 #include "physics/physics_fixture.hpp"
-#include "physics/step.hpp"
+#include "physics/simulation.hpp"
 
 namespace echosim::physics {
 namespace {
 
 struct Pressed {
-    tissue::TissueModel model = test::shipped_model(7);
-    Scene scene = make_scene(model);
-    PhysicsOptions options;
-    TissueState state = make_state(model, options, scene);
+    Simulation sim{compile_model(test::shipped_model(7), PhysicsOptions{})};
+    TissueState& state = sim.state;
     Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
 
     Eigen::Vector3d face(double press) const
@@ -29,7 +27,7 @@ struct Pressed {
         state.probe.active = true;
         state.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
         state.probe.position = face(press);
-        for (int i = 0; i < steps; ++i) step(model, options, scene, state);
+        for (int i = 0; i < steps; ++i) sim.step();
     }
 };
 
@@ -39,7 +37,7 @@ TEST(LocalContactModel, PredictsTheSettledForceOfASmallFurtherPush)
         Pressed p;
         for (int i = 1; i <= 100; ++i) p.hold(depth * i / 100.0, 1);  // in over 0.1 s
         p.hold(depth, 400);
-        const LocalContactModel model = local_contact_model(p.scene.penalty, p.state);
+        const LocalContactModel model = local_contact_model(*p.sim.model, p.state);
         ASSERT_TRUE(model.in_contact);
         EXPECT_NEAR(model.force, p.state.last.probe_force_N, 1e-12);
         EXPECT_GT(model.stiffness, 0.0);
@@ -59,7 +57,7 @@ TEST(LocalContactModel, NoContactNoForce)
 {
     Pressed p;
     p.hold(-5.0, 2);  // 5 mm above the skin
-    const LocalContactModel model = local_contact_model(p.scene.penalty, p.state);
+    const LocalContactModel model = local_contact_model(*p.sim.model, p.state);
     EXPECT_FALSE(model.in_contact);
     EXPECT_EQ(model.force_at(p.face(10.0), Eigen::Vector3d::Zero()), 0.0);
 }

@@ -5,12 +5,15 @@
 #include <cstdlib>
 #include <new>
 #include <random>
+#include <stdexcept>
+#include <utility>
 
 #include <gtest/gtest.h>
 
 #include "fit/interaction.hpp"
 #include "physics/forces.hpp"
 #include "physics/physics_fixture.hpp"
+#include "physics/simulation.hpp"
 
 // Every allocation in this test binary is counted, so a test can assert that a step makes none.
 namespace {
@@ -64,19 +67,25 @@ void place_probe(TissueState& s, const Pose& rest, double press)
 
 TEST(Physics, StaticEquilibriumUnderAKnownLoadMatchesTheInteractionModel)
 {
-    // the fitting's assumption: the loaded node moves, all others stay; a known 6 N pushes node 27
-    const tissue::TissueModel m = test::shipped_model(1);
-    const PhysicsOptions o = quiet_options();
-    const Scene scene = make_scene(m);
-    TissueState s = make_state(m, o, scene);
+    // the fitting's assumption: the loaded node moves, all others stay; a known 6 N pushes node 27.
+    // The model itself holds every other node (its boundary), so the solver's filter, the right-hand
+    // side and the integration all see the same fixed nodes.
+    tissue::TissueModel m = test::shipped_model(1);
     const int point = 27;
     const auto k = m.sample_node(point);
-    std::fill(s.fixed.begin(), s.fixed.end(), 1);
-    s.fixed[k] = 0;
+    std::fill(m.boundary.begin(), m.boundary.end(), std::uint8_t(1));
+    m.boundary[k] = 0;
+    Simulation sim(compile_model(m, quiet_options()));
+    TissueState& s = sim.state;
+    for (std::size_t i = 0; i < m.node_count(); ++i) ASSERT_EQ(sim.model->fixed(i), i != k) << "node " << i;
     const double load = 6.0;
     s.external.segment<3>(3 * Eigen::Index(k)) = -load * normal_of(m, k);
-    for (int i = 0; i < 4000; ++i) step(m, o, scene, s);
+    for (int i = 0; i < 4000; ++i) sim.step();
     EXPECT_LT(s.v.norm(), 1e-6);  // at rest
+    for (std::size_t i = 0; i < m.node_count(); ++i) {
+        if (i == k) continue;
+        ASSERT_EQ(s.x.segment<3>(3 * Eigen::Index(i)), rest_of(m, i)) << "fixed node " << i << " moved";
+    }
     const double depth = (rest_of(m, k) - s.x.segment<3>(3 * Eigen::Index(k))).dot(normal_of(m, k));
     EXPECT_GT(depth, 1.0);
     EXPECT_NEAR(interaction_model_force(m, point, depth), load, 0.01 * load) << "depth " << depth << " mm";
@@ -85,19 +94,18 @@ TEST(Physics, StaticEquilibriumUnderAKnownLoadMatchesTheInteractionModel)
 
 TEST(Physics, EnergyDecaysWithoutExternalForce)
 {
-    const tissue::TissueModel m = test::shipped_model(2);
-    const PhysicsOptions o = quiet_options();
-    const Scene scene = make_scene(m);
-    TissueState s = make_state(m, o, scene);
+    Simulation sim(compile_model(test::shipped_model(2), quiet_options()));
+    const CompiledModel& m = *sim.model;
+    TissueState& s = sim.state;
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-2.0, 2.0);
     for (std::size_t i = 0; i < m.node_count(); ++i)
-        if (!s.fixed[i]) s.x.segment<3>(3 * Eigen::Index(i)) += Eigen::Vector3d(u(rng), u(rng), u(rng));
+        if (!m.fixed(i)) s.x.segment<3>(3 * Eigen::Index(i)) += Eigen::Vector3d(u(rng), u(rng), u(rng));
     const double initial = potential_energy(m, s);
     ASSERT_GT(initial, 0.0);
     double previous = initial;
     for (int i = 0; i < 3000; ++i) {
-        step(m, o, scene, s);
+        sim.step();
         const double e = potential_energy(m, s) + kinetic_energy(m, s);
         ASSERT_LE(e, previous * (1 + 1e-9) + 1e-12) << "energy grew at step " << i;
         previous = e;
@@ -109,62 +117,59 @@ TEST(Physics, ExplicitEulerDivergesWhereImplicitStaysStable)
 {
     // a finer mesh with the probe pressing 8 mm: the contact penalty makes the system stiff
     const tissue::TissueModel m = test::shipped_model(4);
-    const Scene scene = make_scene(m);
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
     auto run = [&](Integrator integrator) {
         PhysicsOptions o;
         o.time_step = 1e-3;
         o.integrator = integrator;
-        TissueState s = make_state(m, o, scene);
+        Simulation sim(compile_model(m, o));
         for (int i = 0; i < 300; ++i) {
-            place_probe(s, rest, 8.0 * std::min(1.0, (i + 1) / 100.0));  // press in over 0.1 s, then hold
-            step(m, o, scene, s);
+            place_probe(sim.state, rest, 8.0 * std::min(1.0, (i + 1) / 100.0));  // press in over 0.1 s, then hold
+            sim.step();
         }
-        return s;
+        return sim;
     };
-    const TissueState implicit = run(Integrator::implicit_euler);
-    const TissueState explicit_ = run(Integrator::explicit_euler);
-    EXPECT_EQ(implicit.resets, 0);
-    EXPECT_GT(implicit.last.probe_force_N, 1.0);
-    EXPECT_LT(implicit.last.probe_force_N, 100.0);
-    EXPECT_GT(explicit_.resets, 0) << "explicit Euler should blow up at 1 ms on this mesh";
+    const Simulation implicit = run(Integrator::implicit_euler);
+    const Simulation explicit_ = run(Integrator::explicit_euler);
+    EXPECT_EQ(implicit.state.resets, 0);
+    EXPECT_GT(implicit.state.last.probe_force_N, 1.0);
+    EXPECT_LT(implicit.state.last.probe_force_N, 100.0);
+    EXPECT_GT(explicit_.state.resets, 0) << "explicit Euler should blow up at 1 ms on this mesh";
 }
 
 TEST(Physics, SkinSettlesUnderAStillProbe)
 {
     // pressed 10 mm and held: the contact forces derive from an energy and are damped, so the
     // skin comes to rest and the force on the probe is steady (no chatter against the face)
-    const tissue::TissueModel m = test::shipped_model(7);
-    const Scene scene = make_scene(m);
     PhysicsOptions o;
     o.gravity.setZero();
-    TissueState s = make_state(m, o, scene);
+    Simulation sim(compile_model(test::shipped_model(7), o));
+    TissueState& s = sim.state;
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
     double lo = 1e9, hi = 0;
     for (int i = 0; i < 400; ++i) {
         place_probe(s, rest, 10.0 * std::min(1.0, (i + 1) / 100.0));
-        step(m, o, scene, s);
+        sim.step();
         if (i >= 300) lo = std::min(lo, s.last.probe_force_N), hi = std::max(hi, s.last.probe_force_N);
     }
     EXPECT_GT(lo, 2.0);
     EXPECT_LT(hi - lo, 0.01 * hi);
-    EXPECT_LT(kinetic_energy(m, s), 1e-6);
+    EXPECT_LT(kinetic_energy(*sim.model, s), 1e-6);
     EXPECT_EQ(s.resets, 0);
 }
 
 TEST(Physics, TwoRunsGiveTheSameResult)
 {
-    const tissue::TissueModel m = test::shipped_model(3);
-    const Scene scene = make_scene(m);
-    const PhysicsOptions o;
+    // two states stepped on one shared compiled model
+    const auto model = compile_model(test::shipped_model(3), PhysicsOptions{});
     const Pose rest = test::leg().probe_rest_pose(0.4f, 0.6f);
     auto run = [&] {
-        TissueState s = make_state(m, o, scene);
+        Simulation sim(model);
         for (int i = 0; i < 150; ++i) {
-            place_probe(s, rest, 0.05 * i);
-            step(m, o, scene, s);
+            place_probe(sim.state, rest, 0.05 * i);
+            sim.step();
         }
-        return s;
+        return std::move(sim.state);
     };
     const TissueState a = run(), b = run();
     EXPECT_EQ(a.x, b.x);  // bit for bit
@@ -177,17 +182,16 @@ TEST(Physics, ThreadsShareTheStepWithoutChangingTheDynamics)
     // products' sums differs, so the answers agree to the solver's tolerance, and a team of a
     // given size repeats itself bit for bit
     const tissue::TissueModel m = test::shipped_model(3);
-    const Scene scene = make_scene(m);
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
     auto run = [&](int threads) {
         PhysicsOptions o;
         o.threads = threads;
-        TissueState s = make_state(m, o, scene);
+        Simulation sim(compile_model(m, o));
         for (int i = 0; i < 200; ++i) {
-            place_probe(s, rest, 0.05 * std::min(i, 100));
-            step(m, o, scene, s);
+            place_probe(sim.state, rest, 0.05 * std::min(i, 100));
+            sim.step();
         }
-        return s;
+        return std::move(sim.state);
     };
     const TissueState one = run(1), two = run(2), again = run(2);  // (no more threads than CI's cores)
     EXPECT_EQ(two.x, again.x);
@@ -200,32 +204,44 @@ TEST(Physics, ThreadsShareTheStepWithoutChangingTheDynamics)
 TEST(Physics, StepAllocatesNothing)
 {
     const tissue::TissueModel m = test::shipped_model(3);
-    const Scene scene = make_scene(m);
     for (int threads : {1, 2}) {
         PhysicsOptions o;
         o.threads = threads;
-        TissueState s = make_state(m, o, scene);
-        place_probe(s, test::leg().probe_rest_pose(0.5f, 0.5f), 5.0);
-        step(m, o, scene, s);  // first contact sizes nothing new either, but keep it out of the count
+        Simulation sim(compile_model(m, o));
+        place_probe(sim.state, test::leg().probe_rest_pose(0.5f, 0.5f), 5.0);
+        sim.step();  // first contact sizes nothing new either, but keep it out of the count
         const long before = g_allocations.load();
-        for (int i = 0; i < 50; ++i) step(m, o, scene, s);
+        for (int i = 0; i < 50; ++i) step(*sim.model, sim.state, *sim.team);
         EXPECT_EQ(g_allocations.load() - before, 0) << threads << " thread(s)";
-        EXPECT_GT(s.last.contacts, 0);
+        EXPECT_GT(sim.state.last.contacts, 0);
     }
+}
+
+TEST(Physics, AStepRefusesATeamOrAStateThatIsNotItsModels)
+{
+    const auto model = compile_model(test::shipped_model(1), PhysicsOptions{});
+    TissueState s = make_state(*model);
+    ForkJoin two(2);
+    EXPECT_THROW(step(*model, s, two), std::invalid_argument);
+    const auto finer = compile_model(test::shipped_model(2), PhysicsOptions{});
+    ForkJoin one(1);
+    EXPECT_THROW(step(*finer, s, one), std::invalid_argument);
+    EXPECT_EQ(s.steps, 0);  // refused before anything was touched
+    EXPECT_EQ(s.x, model->rest);
+    step(*model, s, one);
+    EXPECT_EQ(s.steps, 1);
 }
 
 TEST(Physics, NanIsDetectedResetAndCounted)
 {
-    const tissue::TissueModel m = test::shipped_model(1);
-    const Scene scene = make_scene(m);
-    const PhysicsOptions o;
-    TissueState s = make_state(m, o, scene);
+    Simulation sim(compile_model(test::shipped_model(1), PhysicsOptions{}));
+    TissueState& s = sim.state;
     s.external[3 * 27] = std::nan("");
-    step(m, o, scene, s);
+    sim.step();
     EXPECT_EQ(s.resets, 1);
     EXPECT_TRUE(s.x.allFinite());
     s.external.setZero();
-    step(m, o, scene, s);
+    sim.step();
     EXPECT_EQ(s.resets, 1);
 }
 
