@@ -11,6 +11,7 @@
 #include "app/simulation.hpp"
 #include "app/gpu_args.hpp"
 #include "gpu/window.hpp"
+#include "render/scene_pass.hpp"
 
 namespace echosim::app {
 namespace {
@@ -101,7 +102,9 @@ int run_window(const RunArgs& args)
         messages = ctx.validation_counter();
         DefaultScene scene;
         gpu::WindowPresenter presenter(ctx, window);
-        gpu::Renderer renderer(ctx, presenter.format(), scene.meshes());
+        gpu::CommandPool commands(ctx);  // this (the main) thread's
+        render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
+        const gpu::FramePasses passes{&scene_pass};
         // the tissue runs in its own thread at 1 kHz; the window sends probe commands and draws
         // the latest surface it published
         const tissue::TissueModel model = load_simulation_model(scene.leg);
@@ -170,7 +173,8 @@ int run_window(const RunArgs& args)
                 last_title = elapsed;
             }
 
-            if (presenter.draw(renderer, scene.frame_view()))
+            scene_pass.set_view(scene.frame_view());
+            if (presenter.draw(passes))
                 ++presented;
             else
                 glfwWaitEventsTimeout(0.05);  // minimised: do not spin

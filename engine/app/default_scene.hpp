@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/pose.hpp"
-#include "gpu/renderer.hpp"
+#include "render/scene_pass.hpp"
 #include "scene/camera.hpp"
 #include "scene/leg.hpp"
 #include "scene/mesh.hpp"
@@ -20,8 +20,8 @@ struct DefaultScene {
     Pose probe_pose = leg.probe_rest_pose(0.5f, 0.5f);
     scene::OrbitCamera camera;
 
-    gpu::SceneMeshes meshes() const { return {leg.static_mesh(), leg.patch().rest, probe}; }
-    gpu::FrameView frame_view() const { return {camera, patch, probe_pose.matrix(), true}; }
+    render::SceneMeshes meshes() const { return {leg.static_mesh(), leg.patch().rest, probe}; }
+    render::FrameView frame_view() const { return {camera, patch, probe_pose.matrix(), true}; }
 };
 
 }  // namespace echosim::app

@@ -1,6 +1,7 @@
 #include "app/headless.hpp"
 
 #include "gpu/offscreen.hpp"
+#include "render/scene_pass.hpp"
 
 namespace echosim::app {
 
@@ -14,8 +15,10 @@ HeadlessFrame render_headless(const gpu::ContextOptions& options, const DefaultS
         messages = ctx.validation_counter();
         frame.device = ctx.device_name();
         gpu::OffscreenPresenter presenter(ctx, {width, height});
-        gpu::Renderer renderer(ctx, gpu::OffscreenPresenter::kFormat, scene.meshes());
-        presenter.render(renderer, scene.frame_view(), &frame.image);
+        gpu::CommandPool commands(ctx);
+        render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
+        scene_pass.set_view(scene.frame_view());
+        presenter.render({&scene_pass}, &frame.image);
     }
     // read after the device is gone: leaks are reported while it is destroyed
     frame.validation_messages = messages->load();
