@@ -6,6 +6,7 @@
 #include "app/default_scene.hpp"
 #include "bench/suites.hpp"
 #include "gpu/offscreen.hpp"
+#include "render/scene_pass.hpp"
 
 namespace echosim::bench {
 namespace {
@@ -19,11 +20,14 @@ struct RenderFixture {
 void render_frame(benchmark::State& state, RenderFixture& f, std::uint32_t width, std::uint32_t height, bool readback)
 {
     gpu::OffscreenPresenter presenter(f.ctx, {width, height});
-    gpu::Renderer renderer(f.ctx, gpu::OffscreenPresenter::kFormat, f.scene.meshes());
+    gpu::CommandPool commands(f.ctx);
+    render::ScenePass scene_pass(f.ctx, commands, presenter.format(), f.scene.meshes());
+    scene_pass.set_view(f.scene.frame_view());
+    const gpu::FramePasses passes{&scene_pass};
     io::RgbaImage image;
-    const gpu::FrameView view = f.scene.frame_view();  // the patch at rest: the session is not advanced
-    presenter.render(renderer, view, readback ? &image : nullptr);  // warm-up: first-use costs stay out
-    for (auto _ : state) presenter.render(renderer, view, readback ? &image : nullptr);
+    // warm-up, one frame per slot: first-use costs (each slot's depth buffer) stay out
+    for (int slot = 0; slot < gpu::kFramesInFlight; ++slot) presenter.render(passes, readback ? &image : nullptr);
+    for (auto _ : state) presenter.render(passes, readback ? &image : nullptr);
     state.counters["width"] = width;
     state.counters["height"] = height;
     state.counters["readback"] = readback ? 1 : 0;

@@ -1,5 +1,6 @@
 // Bindings of compute/log_compress.comp, shared with engine/echo/log_compress.cpp (the CPU
-// reference and the dispatcher), so both sides read one definition of the parameters.
+// reference) and engine/image/log_compress_gpu.cpp (the dispatcher), so all read one definition of
+// the parameters.
 #ifndef ECHOSIM_LOG_COMPRESS_BINDINGS_H
 #define ECHOSIM_LOG_COMPRESS_BINDINGS_H
 

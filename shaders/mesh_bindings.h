@@ -6,7 +6,7 @@
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
-namespace echosim::gpu::mesh_bindings {
+namespace echosim::render::mesh_bindings {
 using mat4 = glm::mat4;
 using vec4 = glm::vec4;
 #endif
@@ -31,6 +31,6 @@ struct DrawPush {
 };
 
 #ifdef __cplusplus
-}  // namespace echosim::gpu::mesh_bindings
+}  // namespace echosim::render::mesh_bindings
 #endif
 #endif

@@ -11,6 +11,7 @@
 #include "app/gpu_args.hpp"
 #include "app/window_input.hpp"
 #include "gpu/window.hpp"
+#include "render/scene_pass.hpp"
 
 namespace echosim::app {
 namespace {
@@ -56,7 +57,9 @@ int run_window(const RunArgs& args)
         // latest surface the physics published
         DefaultScene scene({.clock = session::Clock::real_time});
         gpu::WindowPresenter presenter(ctx, window);
-        gpu::Renderer renderer(ctx, presenter.format(), scene.meshes());
+        gpu::CommandPool commands(ctx);  // this (the main) thread's
+        render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
+        const gpu::FramePasses passes{&scene_pass};
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
                     "W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
                     ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
@@ -88,7 +91,7 @@ int run_window(const RunArgs& args)
             scene.session.place_probe_on_patch(u, v, press);
             scene.session.advance(dt);
 
-            const gpu::FrameView view = scene.frame_view();
+            scene_pass.set_view(scene.frame_view());
             const session::SessionView& state = scene.session.view();
             if (scene.session.time() - last_title > 0.2) {
                 char title[160];
@@ -96,7 +99,7 @@ int run_window(const RunArgs& args)
                 glfwSetWindowTitle(window.handle(), title);
                 last_title = scene.session.time();
             }
-            if (presenter.draw(renderer, view))
+            if (presenter.draw(passes))
                 ++presented;
             else
                 glfwWaitEventsTimeout(0.05);  // minimised: do not spin

@@ -4,7 +4,7 @@
 // they all look at the same thing.
 #pragma once
 
-#include "gpu/renderer.hpp"
+#include "render/scene_pass.hpp"
 #include "scene/camera.hpp"
 #include "scene/leg.hpp"
 #include "scene/mesh.hpp"
@@ -19,9 +19,9 @@ struct DefaultScene {
 
     explicit DefaultScene(const session::SessionOptions& options = {}) : session(options) {}
 
-    gpu::SceneMeshes meshes() const { return {session.leg().static_mesh(), session.leg().patch().rest, probe_mesh}; }
+    render::SceneMeshes meshes() const { return {session.leg().static_mesh(), session.leg().patch().rest, probe_mesh}; }
     // the session's newest state, from the camera
-    gpu::FrameView frame_view()
+    render::FrameView frame_view()
     {
         const session::SessionView& v = session.view();
         return {camera, *v.patch, v.probe.matrix(), true};

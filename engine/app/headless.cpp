@@ -1,10 +1,11 @@
 #include "app/headless.hpp"
 
 #include "gpu/offscreen.hpp"
+#include "render/scene_pass.hpp"
 
 namespace echosim::app {
 
-HeadlessFrame render_headless(const gpu::ContextOptions& options, const gpu::SceneMeshes& meshes, const gpu::FrameView& view,
+HeadlessFrame render_headless(const gpu::ContextOptions& options, const render::SceneMeshes& meshes, const render::FrameView& view,
                               std::uint32_t width, std::uint32_t height)
 {
     HeadlessFrame frame;
@@ -14,8 +15,10 @@ HeadlessFrame render_headless(const gpu::ContextOptions& options, const gpu::Sce
         messages = ctx.validation_counter();
         frame.device = ctx.device_name();
         gpu::OffscreenPresenter presenter(ctx, {width, height});
-        gpu::Renderer renderer(ctx, gpu::OffscreenPresenter::kFormat, meshes);
-        presenter.render(renderer, view, &frame.image);
+        gpu::CommandPool commands(ctx);
+        render::ScenePass scene_pass(ctx, commands, presenter.format(), meshes);
+        scene_pass.set_view(view);
+        presenter.render({&scene_pass}, &frame.image);
     }
     // read after the device is gone: leaks are reported while it is destroyed
     frame.validation_messages = messages->load();

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gpu/context.hpp"
-#include "gpu/renderer.hpp"
+#include "render/scene_pass.hpp"
 #include "io/png.hpp"
 
 namespace echosim::app {
@@ -16,7 +16,7 @@ struct HeadlessFrame {
     std::uint32_t validation_messages = 0;  // counted until the device was destroyed (leaks included)
 };
 
-HeadlessFrame render_headless(const gpu::ContextOptions& options, const gpu::SceneMeshes& meshes, const gpu::FrameView& view,
+HeadlessFrame render_headless(const gpu::ContextOptions& options, const render::SceneMeshes& meshes, const render::FrameView& view,
                               std::uint32_t width, std::uint32_t height);
 
 }  // namespace echosim::app

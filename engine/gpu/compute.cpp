@@ -2,43 +2,44 @@
 
 #include <stdexcept>
 #include <string>
-#include <vector>
 
-#include "gpu/renderer.hpp"  // create_shader_module
+#include "gpu/shader.hpp"
 #include "gpu/vk_error.hpp"
 
 namespace echosim::gpu {
+namespace {
+
+std::uint32_t groups_for(std::uint32_t items, std::uint32_t group)
+{
+    if (group == 0) throw std::invalid_argument("a workgroup of size 0");
+    return (items + group - 1) / group;
+}
+
+}  // namespace
+
+Groups Groups::cover(std::uint32_t items, std::uint32_t group) { return {groups_for(items, group), 1, 1}; }
+
+Groups Groups::cover(VkExtent2D items, VkExtent2D group)
+{
+    return {groups_for(items.width, group.width), groups_for(items.height, group.height), 1};
+}
+
+Groups Groups::cover(VkExtent3D items, VkExtent3D group)
+{
+    return {groups_for(items.width, group.width), groups_for(items.height, group.height), groups_for(items.depth, group.depth)};
+}
 
 ComputeKernel::ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name,
-                             std::uint32_t storage_buffers, std::uint32_t push_bytes)
-    : ctx_(ctx), name_(name), storage_buffers_(storage_buffers), push_bytes_(push_bytes)
+                             std::span<const BindingKind> bindings, std::uint32_t push_bytes)
+    : ctx_(ctx), name_(name), push_bytes_(push_bytes), descriptors_(ctx, bindings, VK_SHADER_STAGE_COMPUTE_BIT, name)
 {
     const VkDevice dev = ctx.device();
     try {
-        std::vector<VkDescriptorSetLayoutBinding> bindings(storage_buffers);
-        for (std::uint32_t i = 0; i < storage_buffers; ++i)
-            bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-        VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        set_info.bindingCount = storage_buffers;
-        set_info.pBindings = bindings.data();
-        check(vkCreateDescriptorSetLayout(dev, &set_info, nullptr, &set_layout_), "vkCreateDescriptorSetLayout (compute)");
-
-        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_buffers};
-        VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        pool_info.maxSets = 1;
-        pool_info.poolSizeCount = 1;
-        pool_info.pPoolSizes = &size;
-        check(vkCreateDescriptorPool(dev, &pool_info, nullptr, &pool_), "vkCreateDescriptorPool (compute)");
-        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        alloc.descriptorPool = pool_;
-        alloc.descriptorSetCount = 1;
-        alloc.pSetLayouts = &set_layout_;
-        check(vkAllocateDescriptorSets(dev, &alloc, &set_), "vkAllocateDescriptorSets (compute)");
-
+        const VkDescriptorSetLayout set_layout = descriptors_.layout();
         VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
         VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
         layout_info.setLayoutCount = 1;
-        layout_info.pSetLayouts = &set_layout_;
+        layout_info.pSetLayouts = &set_layout;
         layout_info.pushConstantRangeCount = push_bytes > 0 ? 1 : 0;
         layout_info.pPushConstantRanges = &push;
         check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &layout_), "vkCreatePipelineLayout (compute)");
@@ -63,42 +64,26 @@ void ComputeKernel::destroy()
     const VkDevice dev = ctx_.device();
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
-    if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
-    if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
     pipeline_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
-    pool_ = VK_NULL_HANDLE;
-    set_layout_ = VK_NULL_HANDLE;
 }
 
-void ComputeKernel::bind(std::span<const Buffer* const> buffers)
-{
-    if (buffers.size() != storage_buffers_)
-        throw std::invalid_argument(std::string(name_) + ": " + std::to_string(buffers.size()) + " buffers bound, kernel has " +
-                                    std::to_string(storage_buffers_) + " bindings");
-    std::vector<VkDescriptorBufferInfo> infos(buffers.size());
-    std::vector<VkWriteDescriptorSet> writes(buffers.size());
-    for (std::size_t i = 0; i < buffers.size(); ++i) {
-        infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
-        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = set_;
-        writes[i].dstBinding = std::uint32_t(i);
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[i].pBufferInfo = &infos[i];
-    }
-    vkUpdateDescriptorSets(ctx_.device(), std::uint32_t(writes.size()), writes.data(), 0, nullptr);
-}
-
-void ComputeKernel::record(VkCommandBuffer cmd, std::span<const std::byte> push, std::uint32_t groups) const
+void ComputeKernel::record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups) const
 {
     if (push.size() != push_bytes_)
         throw std::invalid_argument(std::string(name_) + ": push constants of " + std::to_string(push.size()) +
                                     " bytes, kernel expects " + std::to_string(push_bytes_));
+    if (slot < 0 || slot >= kFramesInFlight)
+        throw std::out_of_range(std::string(name_) + ": frame slot " + std::to_string(slot) + " does not exist");
+    if (!descriptors_.bound(slot))
+        throw std::logic_error(std::string(name_) + ": slot " + std::to_string(slot) + " dispatched before its resources were bound");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    if (descriptors_.size() > 0) {
+        const VkDescriptorSet set = descriptors_.set(slot);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
+    }
     if (push_bytes_ > 0) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push.data());
-    vkCmdDispatch(cmd, groups, 1, 1);
+    vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
 }
 
 }  // namespace echosim::gpu

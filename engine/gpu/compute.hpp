@@ -1,42 +1,63 @@
-// The compute layer: a compute pipeline over storage buffers and push constants, dispatched on the
-// Context's queue. Each kernel in compute/ has a bindings header shared with C++ and a CPU
-// reference of the same maths (engine/echo/), so tests can run both and compare.
+// The compute layer: a compute pipeline over one descriptor set of declared bindings (storage and
+// uniform buffers, storage images, images with samplers) and push constants, dispatched in 1, 2 or
+// 3 dimensions on the Context's queue. Each kernel in compute/ has a bindings header shared with C++
+// and a CPU reference of the same maths, so tests can run both and compare.
+//
+// Frame slots: a kernel holds one descriptor set per frame slot (kFramesInFlight), so the frame
+// being recorded can point its bindings at its own resources while the GPU still runs the other
+// slot's dispatch. Bind a slot only when the GPU is done with that slot's last dispatch.
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <span>
 
 #include <vulkan/vulkan.h>
 
 #include "gpu/context.hpp"
+#include "gpu/descriptors.hpp"
+#include "gpu/frame.hpp"
 #include "gpu/resources.hpp"
 
 namespace echosim::gpu {
 
+// Workgroups of a dispatch along x, y and z.
+struct Groups {
+    std::uint32_t x = 1, y = 1, z = 1;
+    // The fewest groups of `group` invocations each that cover `items` (the kernel skips the rest).
+    static Groups cover(std::uint32_t items, std::uint32_t group);
+    static Groups cover(VkExtent2D items, VkExtent2D group);
+    static Groups cover(VkExtent3D items, VkExtent3D group);
+};
+
 class ComputeKernel {
 public:
-    // `storage_buffers` bindings 0..n-1 are storage buffers; `push_bytes` of push constants.
-    ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name, std::uint32_t storage_buffers,
-                  std::uint32_t push_bytes);
+    // `bindings[i]` is the kind of binding i; `push_bytes` of push constants.
+    ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name,
+                  std::span<const BindingKind> bindings, std::uint32_t push_bytes);
+    ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name,
+                  std::initializer_list<BindingKind> bindings, std::uint32_t push_bytes)
+        : ComputeKernel(ctx, spirv, name, std::span(bindings.begin(), bindings.size()), push_bytes)
+    {
+    }
     ~ComputeKernel();
     ComputeKernel(const ComputeKernel&) = delete;
     ComputeKernel& operator=(const ComputeKernel&) = delete;
 
-    // Points the kernel's bindings at these buffers (binding i = buffers[i]); do it between
-    // dispatches, never while one that uses the old bindings is in flight.
-    void bind(std::span<const Buffer* const> buffers);
-    // Records a dispatch of `groups` workgroups along x into `cmd`.
-    void record(VkCommandBuffer cmd, std::span<const std::byte> push, std::uint32_t groups) const;
+    // Points slot `slot`'s bindings at these resources (binding i = resources[i], of the declared
+    // kind); set-up work: throws on a wrong slot, count or kind.
+    void bind(int slot, std::span<const Binding> resources) { descriptors_.bind(slot, resources); }
+    void bind(int slot, std::initializer_list<Binding> resources) { bind(slot, std::span(resources.begin(), resources.size())); }
+    // Records a dispatch of `groups` workgroups with slot `slot`'s bindings into `cmd`. Barriers
+    // around it (what it reads was written, what it writes is read next) are the caller's.
+    void record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups) const;
 
 private:
     void destroy();
     const Context& ctx_;
     const char* name_;
-    std::uint32_t storage_buffers_;
     std::uint32_t push_bytes_;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    SlotDescriptors descriptors_;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
 };

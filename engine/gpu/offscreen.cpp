@@ -8,43 +8,37 @@
 
 namespace echosim::gpu {
 
-OffscreenPresenter::OffscreenPresenter(const Context& ctx, VkExtent2D extent) : ctx_(ctx)
+namespace {
+
+VkExtent2D checked_extent(const Context& ctx, VkExtent2D extent)
 {
     const auto max_dim = ctx.limits().maxImageDimension2D;
     if (extent.width == 0 || extent.height == 0 || extent.width > max_dim || extent.height > max_dim)
         throw std::invalid_argument("image size " + std::to_string(extent.width) + "x" + std::to_string(extent.height) +
                                     " is outside 1.." + std::to_string(max_dim) + " on " + ctx.device_name());
-    color_ = Image(ctx, extent, kFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                   VK_IMAGE_ASPECT_COLOR_BIT);
-    readback_ = Buffer(ctx, VkDeviceSize(extent.width) * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                       MemoryUse::host_visible);
+    return extent;
+}
 
-    const VkDevice dev = ctx.device();
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = ctx.queue_family();
-    check(vkCreateCommandPool(dev, &pool_info, nullptr, &pool_), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
+}  // namespace
+
+OffscreenPresenter::OffscreenPresenter(const Context& ctx, VkExtent2D extent)
+    : ctx_(ctx),
+      color_(ctx, checked_extent(ctx, extent), kFormat, kUsage, VK_IMAGE_ASPECT_COLOR_BIT),
+      readback_(ctx, VkDeviceSize(extent.width) * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible),
+      commands_(ctx)
+{
+    cmd_ = commands_.allocate();
     VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    if (vkAllocateCommandBuffers(dev, &alloc, &cmd_) != VK_SUCCESS ||
-        vkCreateFence(dev, &fence_info, nullptr, &fence_) != VK_SUCCESS) {
-        vkDestroyCommandPool(dev, pool_, nullptr);
-        throw std::runtime_error("offscreen presenter: cannot allocate a command buffer or fence");
-    }
+    check(vkCreateFence(ctx.device(), &fence_info, nullptr, &fence_), "vkCreateFence (offscreen)");
 }
 
 OffscreenPresenter::~OffscreenPresenter()
 {
-    const VkDevice dev = ctx_.device();
     vkQueueWaitIdle(ctx_.queue());
-    vkDestroyFence(dev, fence_, nullptr);
-    vkDestroyCommandPool(dev, pool_, nullptr);
+    vkDestroyFence(ctx_.device(), fence_, nullptr);
 }
 
-void OffscreenPresenter::render(Renderer& renderer, const FrameView& view, io::RgbaImage* out)
+void OffscreenPresenter::render(const FramePasses& passes, io::RgbaImage* out)
 {
     const VkDevice dev = ctx_.device();
     check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
@@ -52,14 +46,13 @@ void OffscreenPresenter::render(Renderer& renderer, const FrameView& view, io::R
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
 
-    RenderTarget target;
-    target.image = color_.handle();
-    target.view = color_.view();
-    target.extent = color_.extent();
-    target.final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    target.next_stage = VK_PIPELINE_STAGE_2_COPY_BIT;
-    target.next_access = VK_ACCESS_2_TRANSFER_READ_BIT;
-    renderer.record(cmd_, 0, target, view);
+    const FrameTarget target{color_.handle(), color_.view(), color_.extent(), kFormat, kUsage};
+    // the last frame's readback is over (its fence was waited for): the image starts as new, and
+    // ends as the source of this frame's copy
+    const TargetState initial{VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE};
+    const TargetState final{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
+    passes.record(cmd_, slot_, target, initial, final);
+    slot_ = (slot_ + 1) % kFramesInFlight;
 
     if (out) {
         VkBufferImageCopy region{};

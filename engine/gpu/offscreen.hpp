@@ -1,12 +1,16 @@
 // The headless presenter: renders into an offscreen image and reads it back to host memory. It is
 // a first-class presenter (Granite's headless platform): `echosim render`, the render tests, the
-// benchmarks and CI all draw through it with the same renderer the window uses.
+// benchmarks and CI all draw through it with the same passes the window uses.
+//
+// Each frame is waited for, so any frame slot is free when the next one starts; the presenter
+// still takes the slots in turn, as the window does, so per-slot resources are exercised headless.
 #pragma once
 
 #include <vulkan/vulkan.h>
 
+#include "gpu/command_pool.hpp"
 #include "gpu/context.hpp"
-#include "gpu/renderer.hpp"
+#include "gpu/frame.hpp"
 #include "gpu/resources.hpp"
 #include "io/png.hpp"
 
@@ -15,6 +19,8 @@ namespace echosim::gpu {
 class OffscreenPresenter {
 public:
     static constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_SRGB;  // bytes read back are sRGB, ready for PNG
+    static constexpr VkImageUsageFlags kUsage =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
     OffscreenPresenter(const Context& ctx, VkExtent2D extent);
     ~OffscreenPresenter();
@@ -22,17 +28,20 @@ public:
     OffscreenPresenter& operator=(const OffscreenPresenter&) = delete;
 
     VkExtent2D extent() const { return color_.extent(); }
+    VkFormat format() const { return kFormat; }
 
-    // Draws one frame and waits for it; with `readback` the pixels are copied back into `out`.
-    void render(Renderer& renderer, const FrameView& view, io::RgbaImage* out);
+    // Records the passes into one frame, submits it and waits for it; with `out` the pixels are
+    // copied back into it.
+    void render(const FramePasses& passes, io::RgbaImage* out);
 
 private:
     const Context& ctx_;
     Image color_;
     Buffer readback_;
-    VkCommandPool pool_ = VK_NULL_HANDLE;
+    CommandPool commands_;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
+    int slot_ = 0;
 };
 
 }  // namespace echosim::gpu

@@ -1,12 +1,24 @@
 #include "gpu/resources.hpp"
 
+#include <cstdio>
 #include <cstring>
+#include <string>
 #include <stdexcept>
 #include <utility>
 
 #include "gpu/vk_error.hpp"
 
 namespace echosim::gpu {
+namespace {
+
+std::string to_hex(std::uint32_t v)
+{
+    char text[16];
+    std::snprintf(text, sizeof text, "%x", v);
+    return text;
+}
+
+}  // namespace
 
 Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use)
     : device_(ctx.device()), size_(size)
@@ -66,12 +78,44 @@ void Buffer::write(std::span<const std::byte> bytes, VkDeviceSize offset)
 }
 
 Image::Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect)
-    : device_(ctx.device()), extent_(extent), format_(format)
 {
+    create(ctx, VK_IMAGE_TYPE_2D, {extent.width, extent.height, 1}, format, usage, aspect);
+}
+
+Image::Image(const Context& ctx, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage)
+{
+    create(ctx, VK_IMAGE_TYPE_3D, extent, format, usage, VK_IMAGE_ASPECT_COLOR_BIT);
+}
+
+void Image::create(const Context& ctx, VkImageType type, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage,
+                   VkImageAspectFlags aspect)
+{
+    const std::string kind = type == VK_IMAGE_TYPE_3D ? "a 3-D image" : "an image";
+    const std::string size = std::to_string(extent.width) + "x" + std::to_string(extent.height) +
+                             (type == VK_IMAGE_TYPE_3D ? "x" + std::to_string(extent.depth) : std::string());
+    // ask first, so an unsupported format or size names itself rather than failing as vkCreateImage
+    VkImageFormatProperties supported{};
+    const VkResult support = vkGetPhysicalDeviceImageFormatProperties(ctx.physical_device(), format, type,
+                                                                      VK_IMAGE_TILING_OPTIMAL, usage, 0, &supported);
+    if (support != VK_SUCCESS)
+        throw VulkanError(support, kind + " of format " + std::to_string(int(format)) + " and usage 0x" +
+                                       to_hex(usage) + " on " + ctx.device_name());
+    if (extent.width == 0 || extent.height == 0 || extent.depth == 0 || extent.width > supported.maxExtent.width ||
+        extent.height > supported.maxExtent.height || extent.depth > supported.maxExtent.depth)
+        throw std::invalid_argument(kind + " of size " + size + " is outside what " + ctx.device_name() +
+                                    " offers for its format (" + std::to_string(supported.maxExtent.width) + "x" +
+                                    std::to_string(supported.maxExtent.height) + "x" +
+                                    std::to_string(supported.maxExtent.depth) + ")");
+
+    device_ = ctx.device();
+    extent_ = extent;
+    type_ = type;
+    format_ = format;
+    aspect_ = aspect;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    info.imageType = VK_IMAGE_TYPE_2D;
+    info.imageType = type;
     info.format = format;
-    info.extent = {extent.width, extent.height, 1};
+    info.extent = extent;
     info.mipLevels = 1;
     info.arrayLayers = 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -90,7 +134,7 @@ Image::Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
 
         VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         view.image = image_;
-        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view.viewType = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
         view.format = format;
         view.subresourceRange = {aspect, 0, 1, 0, 1};
         check(vkCreateImageView(device_, &view, nullptr, &view_), "vkCreateImageView");
@@ -109,7 +153,9 @@ Image& Image::operator=(Image&& o) noexcept
         memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
         view_ = std::exchange(o.view_, VK_NULL_HANDLE);
         extent_ = std::exchange(o.extent_, {});
+        type_ = std::exchange(o.type_, VK_IMAGE_TYPE_2D);
         format_ = std::exchange(o.format_, VK_FORMAT_UNDEFINED);
+        aspect_ = std::exchange(o.aspect_, 0);
     }
     return *this;
 }
@@ -125,54 +171,138 @@ void Image::reset()
     memory_ = VK_NULL_HANDLE;
 }
 
-void submit_and_wait(const Context& ctx, const std::function<void(VkCommandBuffer)>& record)
+Sampler::Sampler(const Context& ctx, Filter filter) : device_(ctx.device()), filter_(filter)
 {
-    VkDevice dev = ctx.device();
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    pool_info.queueFamilyIndex = ctx.queue_family();
-    VkCommandPool pool = VK_NULL_HANDLE;
-    check(vkCreateCommandPool(dev, &pool_info, nullptr, &pool), "vkCreateCommandPool");
-    VkFence fence = VK_NULL_HANDLE;
-    try {
-        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        alloc.commandPool = pool;
-        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        alloc.commandBufferCount = 1;
-        VkCommandBuffer cmd = VK_NULL_HANDLE;
-        check(vkAllocateCommandBuffers(dev, &alloc, &cmd), "vkAllocateCommandBuffers");
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-        record(cmd);
-        check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-
-        VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        check(vkCreateFence(dev, &fence_info, nullptr, &fence), "vkCreateFence");
-        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        submit.commandBufferCount = 1;
-        submit.pCommandBuffers = &cmd;
-        check(vkQueueSubmit(ctx.queue(), 1, &submit, fence), "vkQueueSubmit");
-        check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    } catch (...) {
-        if (fence) vkDestroyFence(dev, fence, nullptr);
-        vkDestroyCommandPool(dev, pool, nullptr);
-        throw;
-    }
-    vkDestroyFence(dev, fence, nullptr);
-    vkDestroyCommandPool(dev, pool, nullptr);
+    const VkFilter f = filter == Filter::linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = f;
+    info.minFilter = f;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.maxLod = 0.0f;
+    check(vkCreateSampler(device_, &info, nullptr, &sampler_), "vkCreateSampler");
 }
 
-Buffer upload_buffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage)
+Sampler& Sampler::operator=(Sampler&& o) noexcept
 {
+    if (this != &o) {
+        reset();
+        device_ = std::exchange(o.device_, VK_NULL_HANDLE);
+        sampler_ = std::exchange(o.sampler_, VK_NULL_HANDLE);
+        filter_ = o.filter_;
+    }
+    return *this;
+}
+
+void Sampler::reset()
+{
+    if (device_ && sampler_) vkDestroySampler(device_, sampler_, nullptr);
+    sampler_ = VK_NULL_HANDLE;
+}
+
+std::uint32_t texel_bytes(VkFormat format)
+{
+    switch (format) {
+    case VK_FORMAT_R8_UNORM:
+    case VK_FORMAT_R8_UINT: return 1;
+    case VK_FORMAT_R16_UNORM:
+    case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R16_UINT: return 2;
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB: return 4;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: throw std::invalid_argument("texel size of Vulkan format " + std::to_string(int(format)) + " is not known to echosim");
+    }
+}
+
+namespace {
+
+VkDeviceSize image_bytes(const Image& image)
+{
+    const VkExtent3D e = image.extent3d();
+    return VkDeviceSize(e.width) * e.height * e.depth * texel_bytes(image.format());
+}
+
+VkBufferImageCopy whole_image(const Image& image)
+{
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = image.extent3d();
+    return region;
+}
+
+// the stages that may read or write an image after an upload, or before a download
+constexpr VkPipelineStageFlags2 kShaderStages = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+
+}  // namespace
+
+Buffer upload_buffer(CommandPool& pool, std::span<const std::byte> bytes, VkBufferUsageFlags usage)
+{
+    const Context& ctx = pool.context();
     Buffer staging(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::host_visible);
     staging.write(bytes);
     Buffer target(ctx, bytes.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::device_local);
-    submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+    pool.submit_and_wait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{0, 0, bytes.size()};
         vkCmdCopyBuffer(cmd, staging.handle(), target.handle(), 1, &region);
     });
     return target;
+}
+
+void upload_image(CommandPool& pool, const Image& image, std::span<const std::byte> bytes, VkImageLayout layout)
+{
+    if (image.aspect() != VK_IMAGE_ASPECT_COLOR_BIT) throw std::invalid_argument("upload_image: only colour images are uploaded");
+    if (bytes.size() != image_bytes(image))
+        throw std::invalid_argument("upload_image: " + std::to_string(bytes.size()) + " bytes for an image of " +
+                                    std::to_string(image_bytes(image)) + " bytes");
+    Buffer staging(pool.context(), bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::host_visible);
+    staging.write(bytes);
+    pool.submit_and_wait([&](VkCommandBuffer cmd) {
+        // what the image held before is discarded: the copy writes all of it
+        transition(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        const VkBufferImageCopy region = whole_image(image);
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        transition(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kShaderStages,
+                   VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);
+    });
+}
+
+std::vector<std::byte> download_image(CommandPool& pool, const Image& image, VkImageLayout layout)
+{
+    if (image.aspect() != VK_IMAGE_ASPECT_COLOR_BIT) throw std::invalid_argument("download_image: only colour images are read back");
+    if (layout == VK_IMAGE_LAYOUT_UNDEFINED) throw std::invalid_argument("download_image: an image in no layout has nothing to read");
+    Buffer readback(pool.context(), image_bytes(image), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible);
+    pool.submit_and_wait([&](VkCommandBuffer cmd) {
+        transition(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   kShaderStages | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                   VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        const VkBufferImageCopy region = whole_image(image);
+        vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(), 1, &region);
+        transition(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, kShaderStages, VK_ACCESS_2_NONE);
+        // make the copy visible to the host read below
+        VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        barrier.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        barrier.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &barrier;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    std::vector<std::byte> out(readback.size());
+    std::memcpy(out.data(), readback.mapped(), out.size());
+    return out;
 }
 
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,

@@ -1,16 +1,17 @@
-// The second Vulkan layer: buffers, images and one-shot command submission on top of a Context.
-// Each resource owns its memory (one allocation per resource: echosim holds a few dozen, far below
-// maxMemoryAllocationCount) and is move-only; destruction waits for nothing, so the owner must make
-// sure the GPU is done with it (the presenters do, by fences).
+// The second Vulkan layer: buffers, images (2-D and 3-D), samplers and uploads through staging on
+// top of a Context. Each resource owns its memory (one allocation per resource: echosim holds a few
+// dozen, far below maxMemoryAllocationCount) and is move-only; destruction waits for nothing, so the
+// owner must make sure the GPU is done with it (the presenters do, by fences).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <span>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "gpu/command_pool.hpp"
 #include "gpu/context.hpp"
 
 namespace echosim::gpu {
@@ -45,7 +46,10 @@ private:
 class Image {
 public:
     Image() = default;
+    // A 2-D image (render targets, depth buffers, the echographic image).
     Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
+    // A 3-D colour image (volumes sampled by compute kernels); its view is a 3-D view.
+    Image(const Context& ctx, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage);
     ~Image() { reset(); }
     Image(Image&& o) noexcept { *this = std::move(o); }
     Image& operator=(Image&& o) noexcept;
@@ -54,25 +58,65 @@ public:
 
     VkImage handle() const { return image_; }
     VkImageView view() const { return view_; }
-    VkExtent2D extent() const { return extent_; }
+    VkExtent2D extent() const { return {extent_.width, extent_.height}; }
+    VkExtent3D extent3d() const { return extent_; }
+    VkImageType type() const { return type_; }
     VkFormat format() const { return format_; }
+    VkImageAspectFlags aspect() const { return aspect_; }
 
 private:
+    void create(const Context& ctx, VkImageType type, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage,
+                VkImageAspectFlags aspect);
     void reset();
     VkDevice device_ = VK_NULL_HANDLE;
     VkImage image_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
     VkImageView view_ = VK_NULL_HANDLE;
-    VkExtent2D extent_{};
+    VkExtent3D extent_{};
+    VkImageType type_ = VK_IMAGE_TYPE_2D;
     VkFormat format_ = VK_FORMAT_UNDEFINED;
+    VkImageAspectFlags aspect_ = 0;
 };
 
-// Records `record` into a fresh command buffer, submits it and waits: for uploads at start-up and
-// for tests, never per frame.
-void submit_and_wait(const Context& ctx, const std::function<void(VkCommandBuffer)>& record);
+// How a sampler reads between texels. Every sampler clamps to the edge on all axes and reads
+// normalised coordinates, without mip levels: images and volumes are sampled where they are.
+enum class Filter { nearest, linear };
 
-// A device-local buffer filled with `bytes` through a staging buffer.
-Buffer upload_buffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+class Sampler {
+public:
+    Sampler() = default;
+    Sampler(const Context& ctx, Filter filter);
+    ~Sampler() { reset(); }
+    Sampler(Sampler&& o) noexcept { *this = std::move(o); }
+    Sampler& operator=(Sampler&& o) noexcept;
+    Sampler(const Sampler&) = delete;
+    Sampler& operator=(const Sampler&) = delete;
+
+    VkSampler handle() const { return sampler_; }
+    Filter filter() const { return filter_; }
+
+private:
+    void reset();
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    Filter filter_ = Filter::nearest;
+};
+
+// Bytes per texel of the colour formats echosim uploads; throws for any other format.
+std::uint32_t texel_bytes(VkFormat format);
+
+// A device-local buffer filled with `bytes` through a staging buffer; waits for the copy.
+Buffer upload_buffer(CommandPool& pool, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+
+// Fills all of a colour image (2-D or 3-D, tightly packed rows and slices, x fastest) with `bytes`
+// through a staging buffer, and leaves it in `layout`, ready for compute and fragment shaders to
+// read (SHADER_READ_ONLY_OPTIMAL) or write (GENERAL). The image needs TRANSFER_DST usage. Waits.
+void upload_image(CommandPool& pool, const Image& image, std::span<const std::byte> bytes,
+                  VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+
+// The texels of a whole colour image (2-D or 3-D, packed as upload_image takes them), copied back to
+// the host; the image is in `layout` before and after, and needs TRANSFER_SRC usage. Waits.
+std::vector<std::byte> download_image(CommandPool& pool, const Image& image, VkImageLayout layout);
 
 // One image layout transition (synchronization2) covering all mips and layers of a colour or depth image.
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,

@@ -94,7 +94,7 @@ VkExtent2D Window::framebuffer_extent() const
     return {std::uint32_t(std::max(w, 0)), std::uint32_t(std::max(h, 0))};
 }
 
-WindowPresenter::WindowPresenter(const Context& ctx, Window& window) : ctx_(ctx), window_(window)
+WindowPresenter::WindowPresenter(const Context& ctx, Window& window) : ctx_(ctx), window_(window), commands_(ctx)
 {
     check(glfwCreateWindowSurface(ctx.instance(), window.handle(), nullptr, &surface_), "glfwCreateWindowSurface");
     VkBool32 supported = VK_FALSE;
@@ -117,16 +117,8 @@ WindowPresenter::WindowPresenter(const Context& ctx, Window& window) : ctx_(ctx)
             format_ = f.format;
 
     const VkDevice dev = ctx.device();
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = ctx.queue_family();
-    check(vkCreateCommandPool(dev, &pool_info, nullptr, &pool_), "vkCreateCommandPool");
     for (Frame& f : frames_) {
-        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        alloc.commandPool = pool_;
-        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        alloc.commandBufferCount = 1;
-        check(vkAllocateCommandBuffers(dev, &alloc, &f.cmd), "vkAllocateCommandBuffers");
+        f.cmd = commands_.allocate();
         VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         fence.flags = VK_FENCE_CREATE_SIGNALED_BIT;
         check(vkCreateFence(dev, &fence, nullptr, &f.in_flight), "vkCreateFence");
@@ -146,7 +138,6 @@ WindowPresenter::~WindowPresenter()
         if (f.in_flight) vkDestroyFence(dev, f.in_flight, nullptr);
         if (f.image_acquired) vkDestroySemaphore(dev, f.image_acquired, nullptr);
     }
-    if (pool_) vkDestroyCommandPool(dev, pool_, nullptr);
     vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
 }
 
@@ -183,7 +174,9 @@ void WindowPresenter::create_swapchain()
     info.imageColorSpace = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
     info.imageExtent = extent;
     info.imageArrayLayers = 1;
-    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    // passes may also clear or blit into the target where the surface allows (FrameTarget::usage)
+    usage_ = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    info.imageUsage = usage_;
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
@@ -221,7 +214,7 @@ void WindowPresenter::create_swapchain()
     }
 }
 
-bool WindowPresenter::draw(Renderer& renderer, const FrameView& view)
+bool WindowPresenter::draw(const FramePasses& passes)
 {
     const VkDevice dev = ctx_.device();
     const VkExtent2D fb = window_.framebuffer_extent();
@@ -245,12 +238,12 @@ bool WindowPresenter::draw(Renderer& renderer, const FrameView& view)
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(f.cmd, &begin), "vkBeginCommandBuffer");
-    RenderTarget target;
-    target.image = images_[index];
-    target.view = views_[index];
-    target.extent = extent_;
-    target.final_layout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    renderer.record(f.cmd, frame_, target, view);
+    const FrameTarget target{images_[index], views_[index], extent_, format_, usage_};
+    // the submission waits for the acquired image at the colour output stage; the first barrier
+    // starts from that stage, so it chains with the wait whatever stage the first pass needs
+    const TargetState initial{VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE};
+    const TargetState final{VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+    passes.record(f.cmd, frame_, target, initial, final);
     check(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
 
     const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;

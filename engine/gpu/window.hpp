@@ -11,8 +11,9 @@
 
 #include <vulkan/vulkan.h>
 
+#include "gpu/command_pool.hpp"
 #include "gpu/context.hpp"
-#include "gpu/renderer.hpp"
+#include "gpu/frame.hpp"
 
 struct GLFWwindow;
 
@@ -66,8 +67,9 @@ public:
     VkExtent2D extent() const { return extent_; }
     std::uint32_t swapchain_generation() const { return generation_; }  // how many times (re)created
 
-    // Draws and presents one frame; returns false when nothing could be drawn (minimised window).
-    bool draw(Renderer& renderer, const FrameView& view);
+    // Records the passes into one frame (slot after slot, kFramesInFlight in flight) and presents
+    // it; returns false when nothing could be drawn (minimised window).
+    bool draw(const FramePasses& passes);
 
 private:
     struct Frame {
@@ -84,11 +86,12 @@ private:
     VkSurfaceKHR surface_ = VK_NULL_HANDLE;
     VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
     VkFormat format_ = VK_FORMAT_UNDEFINED;
+    VkImageUsageFlags usage_ = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     VkExtent2D extent_{};
     std::vector<VkImage> images_;
     std::vector<VkImageView> views_;
     std::vector<VkSemaphore> render_done_;  // one per swapchain image: present waits on it
-    VkCommandPool pool_ = VK_NULL_HANDLE;
+    CommandPool commands_;
     std::array<Frame, kFramesInFlight> frames_{};
     int frame_ = 0;
     std::uint32_t generation_ = 0;

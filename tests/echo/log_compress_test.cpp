@@ -1,3 +1,4 @@
+// The CPU reference (engine/echo) and the GPU kernel (engine/image) of log compression, compared.
 #include "echo/log_compress.hpp"
 
 #include <cmath>
@@ -5,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "image/log_compress_gpu.hpp"
 #include "test_gpu.hpp"
 
 namespace echosim::echo {
@@ -41,8 +43,9 @@ TEST(LogCompress, GpuKernelMatchesCpuReference)
     {
         gpu::Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
-        LogCompressGpu kernel(ctx, std::uint32_t(envelope.size()));
-        gpu = kernel.run(envelope, p);
+        gpu::CommandPool pool(ctx);
+        image::LogCompressGpu kernel(ctx, std::uint32_t(envelope.size()));
+        gpu = kernel.run(pool, envelope, p);
     }
     EXPECT_EQ(messages->load(), 0u);
     ASSERT_EQ(gpu.size(), cpu.size());

@@ -21,9 +21,10 @@ TEST(Context, StartsOnLavapipeWithValidationAndStaysSilent)
         // a buffer round trip through the GPU: upload, copy back, compare
         std::vector<std::uint32_t> data(1000);
         for (std::uint32_t i = 0; i < data.size(); ++i) data[i] = i * 2654435761u;
-        Buffer device = upload_buffer(ctx, std::as_bytes(std::span(data)), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        CommandPool pool(ctx);
+        Buffer device = upload_buffer(pool, std::as_bytes(std::span(data)), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
         Buffer back(ctx, device.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible);
-        submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+        pool.submit_and_wait([&](VkCommandBuffer cmd) {
             VkBufferCopy region{0, 0, device.size()};
             vkCmdCopyBuffer(cmd, device.handle(), back.handle(), 1, &region);
         });
@@ -61,6 +62,25 @@ TEST(Context, ValidationCatchesMisuse)
         EXPECT_NE(printed.find("vulkan validation"), std::string::npos);
     }
     EXPECT_GT(messages->load(), 0u);
+}
+
+TEST(Context, ValidationReportsObjectsLeftWhenTheDeviceGoes)
+{
+    // why every GPU test reads the count after its context is gone: leaks are reported only then
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    std::uint32_t while_alive = 0;
+    testing::internal::CaptureStderr();
+    {
+        Context ctx(test::lavapipe_options());
+        messages = ctx.validation_counter();
+        VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        VkSampler leaked = VK_NULL_HANDLE;
+        ASSERT_EQ(vkCreateSampler(ctx.device(), &info, nullptr, &leaked), VK_SUCCESS);
+        while_alive = ctx.validation_messages();
+    }
+    const std::string printed = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(while_alive, 0u);
+    EXPECT_GT(messages->load(), 0u) << printed;
 }
 
 }  // namespace

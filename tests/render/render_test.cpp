@@ -1,10 +1,11 @@
 // Render tests: headless frames of the default scene on lavapipe, against a reference PNG and
 // against what the scene must show. Regenerate the references with scripts/update-references.
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <memory>
 
 #include <glm/geometric.hpp>
-#include <cstring>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include "app/headless.hpp"
 #include "gpu/offscreen.hpp"
 #include "render/image_compare.hpp"
+#include "render/scene_pass.hpp"
 #include "test_gpu.hpp"
 
 namespace echosim {
@@ -39,20 +41,35 @@ TEST(Render, DefaultViewMatchesReference)
     EXPECT_TRUE(within(cmp, kReferenceTolerance)) << cmp.describe();
 }
 
-// Renders the scene several ways in one context, as the window does frame after frame.
+// Renders the scene several ways in one context, as the window does frame after frame. The
+// validation count is read after every GPU object and the device are gone, so leaks count too.
 class SceneRender : public testing::Test {
 protected:
-    SceneRender()
-        : ctx_(test::lavapipe_options()), presenter_(ctx_, {kWidth, kHeight}),
-          renderer_(ctx_, gpu::OffscreenPresenter::kFormat, scene_.meshes())
-    {
-    }
-    ~SceneRender() override { EXPECT_EQ(ctx_.validation_messages(), 0u); }
+    struct Gpu {
+        gpu::Context ctx;
+        gpu::OffscreenPresenter presenter;
+        gpu::CommandPool commands;
+        render::ScenePass scene_pass;
+        gpu::FramePasses passes;
+        explicit Gpu(const app::DefaultScene& scene)
+            : ctx(test::lavapipe_options()), presenter(ctx, {kWidth, kHeight}), commands(ctx),
+              scene_pass(ctx, commands, presenter.format(), scene.meshes()), passes{&scene_pass}
+        {
+        }
+    };
 
-    io::RgbaImage draw(const gpu::FrameView& view)
+    SceneRender() : gpu_(std::make_unique<Gpu>(scene_)), messages_(gpu_->ctx.validation_counter()) {}
+    void TearDown() override
+    {
+        gpu_.reset();
+        EXPECT_EQ(messages_->load(), 0u);
+    }
+
+    io::RgbaImage draw(const render::FrameView& view)
     {
         io::RgbaImage img;
-        presenter_.render(renderer_, view, &img);
+        gpu_->scene_pass.set_view(view);
+        gpu_->presenter.render(gpu_->passes, &img);
         return img;
     }
     // where a world point lands in the image [px]
@@ -76,9 +93,8 @@ protected:
     }
 
     app::DefaultScene scene_;
-    gpu::Context ctx_;
-    gpu::OffscreenPresenter presenter_;
-    gpu::Renderer renderer_;
+    std::unique_ptr<Gpu> gpu_;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages_;
 };
 
 TEST_F(SceneRender, SameInputSameImage)
@@ -90,7 +106,7 @@ TEST_F(SceneRender, SameInputSameImage)
 
 TEST_F(SceneRender, ProbeIsDrawnWhereItsPoseSays)
 {
-    gpu::FrameView view = scene_.frame_view();
+    render::FrameView view = scene_.frame_view();
     const auto with = draw(view);
     view.show_probe = false;
     const auto without = draw(view);
@@ -114,7 +130,7 @@ TEST_F(SceneRender, PatchDeformationIsDrawn)
             auto& vert = pushed[std::size_t(i * patch.cols + j)];
             vert.position -= vert.normal * (12.0f * std::max(0.0f, 1.0f - 4.0f * (u * u + v * v)));
         }
-    gpu::FrameView view = scene_.frame_view();
+    render::FrameView view = scene_.frame_view();
     view.patch_vertices = pushed;
     view.show_probe = false;
     const auto pressed = draw(view);

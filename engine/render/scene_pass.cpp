@@ -1,15 +1,25 @@
-#include "gpu/renderer.hpp"
+#include "render/scene_pass.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 #include <glm/geometric.hpp>
 
 #include "echosim_graphics_shaders.hpp"
+#include "gpu/shader.hpp"
 #include "gpu/vk_error.hpp"
 #include "mesh_bindings.h"
 
-namespace echosim::gpu {
+namespace echosim::render {
+
+using gpu::check;
+using gpu::create_shader_module;
+using gpu::kFramesInFlight;
+using gpu::MemoryUse;
+using gpu::transition;
+using gpu::upload_buffer;
+
 namespace {
 
 using mesh_bindings::DrawPush;
@@ -23,29 +33,19 @@ std::span<const std::byte> bytes_of(std::span<const T> s)
 
 }  // namespace
 
-VkShaderModule create_shader_module(VkDevice device, std::span<const std::uint32_t> spirv, const char* name)
-{
-    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = spirv.size_bytes();
-    info.pCode = spirv.data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    check(vkCreateShaderModule(device, &info, nullptr, &module), (std::string("vkCreateShaderModule ") + name).c_str());
-    return module;
-}
-
-Renderer::Renderer(const Context& ctx, VkFormat color_format, const SceneMeshes& meshes)
+ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkFormat color_format, const SceneMeshes& meshes)
     : ctx_(ctx), color_format_(color_format)
 {
     const VkDevice dev = ctx.device();
     try {
         // static geometry goes to device-local memory once
-        static_mesh_.vertices = upload_buffer(ctx, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        static_mesh_.indices = upload_buffer(ctx, bytes_of(std::span(meshes.static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        static_mesh_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         static_mesh_.index_count = std::uint32_t(meshes.static_mesh.indices.size());
-        probe_.vertices = upload_buffer(ctx, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        probe_.indices = upload_buffer(ctx, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        probe_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        probe_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         probe_.index_count = std::uint32_t(meshes.probe.indices.size());
-        patch_indices_ = upload_buffer(ctx, bytes_of(std::span(meshes.patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        patch_indices_ = upload_buffer(uploads, bytes_of(std::span(meshes.patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         patch_index_count_ = std::uint32_t(meshes.patch_rest.indices.size());
         patch_vertex_count_ = meshes.patch_rest.vertices.size();
 
@@ -67,9 +67,9 @@ Renderer::Renderer(const Context& ctx, VkFormat color_format, const SceneMeshes&
         check(vkCreateDescriptorPool(dev, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
 
         for (Slot& slot : slots_) {
-            slot.uniforms = Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
-            slot.patch_vertices = Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
-                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
+            slot.uniforms = gpu::Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
+            slot.patch_vertices = gpu::Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
+                                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
             slot.patch_vertices.write(bytes_of(std::span(meshes.patch_rest.vertices)));
             VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
             alloc.descriptorPool = descriptor_pool_;
@@ -92,9 +92,9 @@ Renderer::Renderer(const Context& ctx, VkFormat color_format, const SceneMeshes&
     }
 }
 
-Renderer::~Renderer() { destroy(); }
+ScenePass::~ScenePass() { destroy(); }
 
-void Renderer::destroy()
+void ScenePass::destroy()
 {
     const VkDevice dev = ctx_.device();
     // a presenter may still have frames in flight that use these objects
@@ -109,7 +109,7 @@ void Renderer::destroy()
     set_layout_ = VK_NULL_HANDLE;
 }
 
-void Renderer::create_pipeline()
+void ScenePass::create_pipeline()
 {
     const VkDevice dev = ctx_.device();
     VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)};
@@ -197,7 +197,7 @@ void Renderer::create_pipeline()
     check(result, "vkCreateGraphicsPipelines (mesh)");
 }
 
-void Renderer::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
+void ScenePass::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
                     const glm::mat4& model, const glm::vec4& tint)
 {
     const DrawPush push{model, tint};
@@ -208,14 +208,23 @@ void Renderer::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, st
     vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
 }
 
-void Renderer::record(VkCommandBuffer cmd, int slot_index, const RenderTarget& target, const FrameView& view)
+void ScenePass::set_view(const FrameView& view)
 {
-    Slot& slot = slots_.at(std::size_t(slot_index));
     if (view.patch_vertices.size() != patch_vertex_count_)
-        throw std::invalid_argument("Renderer::record: patch has " + std::to_string(view.patch_vertices.size()) +
-                                    " vertices, the renderer was built for " + std::to_string(patch_vertex_count_));
+        throw std::invalid_argument("scene pass: patch has " + std::to_string(view.patch_vertices.size()) +
+                                    " vertices, the pass was built for " + std::to_string(patch_vertex_count_));
+    view_ = view;
+}
+
+void ScenePass::record(const gpu::PassContext& pass)
+{
+    const VkCommandBuffer cmd = pass.cmd;
+    const gpu::FrameTarget& target = pass.target;
+    const FrameView& view = view_;
+    Slot& slot = slots_[std::size_t(pass.slot)];
     if (slot.depth.extent().width != target.extent.width || slot.depth.extent().height != target.extent.height)
-        slot.depth = Image(ctx_, target.extent, depth_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+        slot.depth = gpu::Image(ctx_, target.extent, depth_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                VK_IMAGE_ASPECT_DEPTH_BIT);
 
     // per-frame data: the slot's fence has signalled, so the GPU no longer reads these buffers
     const float aspect = float(target.extent.width) / float(std::max(1u, target.extent.height));
@@ -229,11 +238,11 @@ void Renderer::record(VkCommandBuffer cmd, int slot_index, const RenderTarget& t
     frame.sky = glm::vec4(0.16f, 0.17f, 0.20f, 1.0f);
     frame.ground = glm::vec4(0.04f, 0.035f, 0.035f, 1.0f);
     slot.uniforms.write(std::as_bytes(std::span(&frame, 1)));
-    slot.patch_vertices.write(std::as_bytes(view.patch_vertices));
+    // no view set yet: the patch keeps the rest shape it was made with
+    if (!view.patch_vertices.empty()) slot.patch_vertices.write(std::as_bytes(view.patch_vertices));
 
-    transition(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE,
-               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    // the target is already a colour attachment (the frame recorder put it there); the depth
+    // buffer is the pass's own
     transition(cmd, slot.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
@@ -244,7 +253,7 @@ void Renderer::record(VkCommandBuffer cmd, int slot_index, const RenderTarget& t
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     color.imageView = target.view;
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.loadOp = target_use().attachment_load_op();
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     color.clearValue.color = {{0.012f, 0.014f, 0.018f, 1.0f}};
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -278,10 +287,6 @@ void Renderer::record(VkCommandBuffer cmd, int slot_index, const RenderTarget& t
         draw(cmd, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
              glm::vec4(1.0f, 1.0f, 1.0f, 0.55f));
     vkCmdEndRendering(cmd);
-
-    transition(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, target.final_layout,
-               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, target.next_stage,
-               target.next_access);
 }
 
-}  // namespace echosim::gpu
+}  // namespace echosim::render

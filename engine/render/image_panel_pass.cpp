@@ -1,0 +1,156 @@
+#include "render/image_panel_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "echosim_graphics_shaders.hpp"
+#include "gpu/shader.hpp"
+#include "gpu/vk_error.hpp"
+#include "panel_bindings.h"
+
+namespace echosim::render {
+namespace {
+
+constexpr gpu::BindingKind kBindings[] = {gpu::BindingKind::sampled_image};  // PANEL_IMAGE_BINDING
+static_assert(PANEL_IMAGE_SET == 0 && PANEL_IMAGE_BINDING == 0, "the panel's one binding is binding 0 of set 0");
+
+// a fraction of an edge to a pixel column or row, within [0, size]
+std::int64_t edge(float fraction, std::uint32_t size)
+{
+    return std::clamp<std::int64_t>(std::llround(double(fraction) * double(size)), 0, std::int64_t(size));
+}
+
+}  // namespace
+
+VkRect2D panel_pixels(const PanelRect& rect, VkExtent2D extent)
+{
+    const std::int64_t x0 = edge(rect.x, extent.width), x1 = edge(rect.x + rect.width, extent.width);
+    const std::int64_t y0 = edge(rect.y, extent.height), y1 = edge(rect.y + rect.height, extent.height);
+    return {{std::int32_t(x0), std::int32_t(y0)},
+            {std::uint32_t(std::max<std::int64_t>(0, x1 - x0)), std::uint32_t(std::max<std::int64_t>(0, y1 - y0))}};
+}
+
+ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, PanelRect rect)
+    : ctx_(ctx), color_format_(color_format), rect_(rect), descriptors_(ctx, kBindings, VK_SHADER_STAGE_FRAGMENT_BIT, "image panel")
+{
+    const VkDevice dev = ctx.device();
+    try {
+        const VkDescriptorSetLayout set_layout = descriptors_.layout();
+        VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        layout_info.setLayoutCount = 1;
+        layout_info.pSetLayouts = &set_layout;
+        gpu::check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout (panel)");
+
+        VkShaderModule vert = gpu::create_shader_module(dev, shaders::panel_vert, "panel.vert");
+        VkShaderModule frag = VK_NULL_HANDLE;
+        try {
+            frag = gpu::create_shader_module(dev, shaders::panel_frag, "panel.frag");
+        } catch (...) {
+            vkDestroyShaderModule(dev, vert, nullptr);
+            throw;
+        }
+        VkPipelineShaderStageCreateInfo stages[2]{};
+        stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr};
+        stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr};
+
+        // no vertex buffers: the vertex shader makes the quad's corners from their index
+        VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+        VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+        assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+        VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+        viewport.viewportCount = 1;
+        viewport.scissorCount = 1;
+        VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+        raster.polygonMode = VK_POLYGON_MODE_FILL;
+        raster.cullMode = VK_CULL_MODE_NONE;
+        raster.lineWidth = 1.0f;
+        VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+        multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        VkPipelineColorBlendAttachmentState blend_attachment{};  // opaque: the panel replaces the scene under it
+        blend_attachment.colorWriteMask =
+            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+        VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        blend.attachmentCount = 1;
+        blend.pAttachments = &blend_attachment;
+        const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+        VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+        dynamic.dynamicStateCount = 2;
+        dynamic.pDynamicStates = dynamic_states;
+        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+        rendering.colorAttachmentCount = 1;
+        rendering.pColorAttachmentFormats = &color_format_;
+
+        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+        info.pNext = &rendering;
+        info.stageCount = 2;
+        info.pStages = stages;
+        info.pVertexInputState = &vertex_input;
+        info.pInputAssemblyState = &assembly;
+        info.pViewportState = &viewport;
+        info.pRasterizationState = &raster;
+        info.pMultisampleState = &multisample;
+        info.pDepthStencilState = &depth;
+        info.pColorBlendState = &blend;
+        info.pDynamicState = &dynamic;
+        info.layout = pipeline_layout_;
+        const VkResult result = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+        vkDestroyShaderModule(dev, vert, nullptr);
+        vkDestroyShaderModule(dev, frag, nullptr);
+        gpu::check(result, "vkCreateGraphicsPipelines (panel)");
+    } catch (...) {
+        destroy();
+        throw;
+    }
+}
+
+ImagePanelPass::~ImagePanelPass() { destroy(); }
+
+void ImagePanelPass::destroy()
+{
+    const VkDevice dev = ctx_.device();
+    // a presenter may still have frames in flight that use the pipeline
+    vkDeviceWaitIdle(dev);
+    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
+    if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+    pipeline_layout_ = VK_NULL_HANDLE;
+}
+
+void ImagePanelPass::show(int slot, const gpu::Image& image, const gpu::Sampler& sampler)
+{
+    if (image.type() != VK_IMAGE_TYPE_2D) throw std::invalid_argument("image panel: shows 2-D images only");
+    const gpu::Binding binding = gpu::Binding::sampled(image, sampler);
+    descriptors_.bind(slot, std::span(&binding, 1));
+}
+
+void ImagePanelPass::record(const gpu::PassContext& frame)
+{
+    const VkRect2D area = panel_pixels(rect_, frame.target.extent);
+    if (!descriptors_.bound(frame.slot) || area.extent.width == 0 || area.extent.height == 0) return;
+
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = frame.target.view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = target_use().attachment_load_op();  // keep what the scene drew around the panel
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = area;
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &color;
+    vkCmdBeginRendering(frame.cmd, &rendering);
+
+    const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
+    vkCmdSetViewport(frame.cmd, 0, 1, &vp);
+    vkCmdSetScissor(frame.cmd, 0, 1, &area);
+    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    const VkDescriptorSet set = descriptors_.set(frame.slot);
+    vkCmdBindDescriptorSets(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PANEL_IMAGE_SET, 1, &set, 0, nullptr);
+    vkCmdDraw(frame.cmd, PANEL_VERTEX_COUNT, 1, 0, 0);
+    vkCmdEndRendering(frame.cmd);
+}
+
+}  // namespace echosim::render

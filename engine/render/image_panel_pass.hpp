@@ -1,0 +1,61 @@
+// A view of an image in a rectangle of the frame: where the echographic image will show beside the
+// 3D scene. It loads the target (it draws over what the scene left) and covers its rectangle with
+// the image, opaque, through the sampler given (nearest shows the pixels as they are, linear
+// smooths an image smaller than its panel).
+//
+// The image: 2-D, RGBA8 display values (sRGB-encoded grey levels, as PNGs and scanners have them;
+// the target shows those very bytes), in layout SHADER_READ_ONLY_OPTIMAL, its last write made
+// visible to fragment shaders by whoever wrote it (upload_image does; a compute pass of the frame
+// puts its own barrier after its dispatch).
+//
+// Frame slots: each slot has its own image binding, so the image pipeline can fill one slot's image
+// while the other slot's frame is on screen. A slot shown no image draws nothing.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/context.hpp"
+#include "gpu/descriptors.hpp"
+#include "gpu/frame.hpp"
+#include "gpu/resources.hpp"
+
+namespace echosim::render {
+
+// A rectangle of the target in fractions of its width and height, from its top-left corner; it
+// follows the target through resizes.
+struct PanelRect {
+    float x = 0.0f, y = 0.0f, width = 1.0f, height = 1.0f;
+};
+
+// The pixels a panel covers in a target of `extent` (edges rounded to the nearest pixel, clipped
+// to the target).
+VkRect2D panel_pixels(const PanelRect& rect, VkExtent2D extent);
+
+class ImagePanelPass final : public gpu::FramePass {
+public:
+    ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, PanelRect rect);
+    ~ImagePanelPass() override;
+    ImagePanelPass(const ImagePanelPass&) = delete;
+    ImagePanelPass& operator=(const ImagePanelPass&) = delete;
+
+    void set_rect(const PanelRect& rect) { rect_ = rect; }
+    const PanelRect& rect() const { return rect_; }
+    // Shows `image` through `sampler` in the frames of slot `slot` (both must outlive their use);
+    // only while the GPU is done with the slot's last frame.
+    void show(int slot, const gpu::Image& image, const gpu::Sampler& sampler);
+
+    const char* name() const override { return "image panel"; }
+    gpu::TargetUse target_use() const override { return gpu::TargetUse::color_attachment(gpu::TargetLoad::load); }
+    void record(const gpu::PassContext& frame) override;
+
+private:
+    void destroy();
+    const gpu::Context& ctx_;
+    VkFormat color_format_;
+    PanelRect rect_;
+    gpu::SlotDescriptors descriptors_;
+    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+}  // namespace echosim::render

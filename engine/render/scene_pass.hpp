@@ -1,0 +1,90 @@
+// The scene pass: draws the static leg (uploaded once), the exam patch (vertices replaced every
+// frame) and the probe into the frame's target, with a depth buffer of its own. It clears the
+// target, so it comes first among the passes that draw (gpu/frame.hpp); views and overlays load
+// what it leaves. Presenters own the targets and the frame pacing; the pass only records.
+//
+// Frame slots: per slot the pass keeps its own uniform buffer, patch vertex buffer and depth image
+// (the presenter guarantees the GPU is done with a slot before it is recorded again).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include <glm/mat4x4.hpp>
+#include <vulkan/vulkan.h>
+
+#include "gpu/command_pool.hpp"
+#include "gpu/context.hpp"
+#include "gpu/frame.hpp"
+#include "gpu/resources.hpp"
+#include "scene/camera.hpp"
+#include "scene/mesh.hpp"
+
+namespace echosim::render {
+
+// What changes from frame to frame.
+struct FrameView {
+    scene::OrbitCamera camera;
+    std::span<const scene::Vertex> patch_vertices;  // as many as the patch's rest mesh
+    glm::mat4 probe_to_world{1.0f};
+    bool show_probe = true;
+};
+
+struct SceneMeshes {
+    const scene::Mesh& static_mesh;
+    const scene::Mesh& patch_rest;
+    const scene::Mesh& probe;
+};
+
+class ScenePass final : public gpu::FramePass {
+public:
+    // Uploads the static meshes through `uploads` (the calling thread's pool) and waits for them.
+    ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkFormat color_format, const SceneMeshes& meshes);
+    ~ScenePass() override;
+    ScenePass(const ScenePass&) = delete;
+    ScenePass& operator=(const ScenePass&) = delete;
+
+    VkFormat color_format() const { return color_format_; }
+    // What the next frame shows; its patch must have as many vertices as the rest mesh (checked
+    // here) and stay valid until that frame is recorded.
+    void set_view(const FrameView& view);
+
+    const char* name() const override { return "scene"; }
+    gpu::TargetUse target_use() const override { return gpu::TargetUse::color_attachment(gpu::TargetLoad::clear); }
+    void record(const gpu::PassContext& frame) override;
+
+private:
+    struct GpuMesh {
+        gpu::Buffer vertices;
+        gpu::Buffer indices;
+        std::uint32_t index_count = 0;
+    };
+    struct Slot {
+        gpu::Buffer uniforms;
+        gpu::Buffer patch_vertices;
+        gpu::Image depth;
+        VkDescriptorSet descriptors = VK_NULL_HANDLE;
+    };
+
+    void create_pipeline();
+    void destroy();  // releases the raw handles; members with destructors release themselves
+    void draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
+              const glm::mat4& model, const glm::vec4& tint);
+
+    const gpu::Context& ctx_;
+    VkFormat color_format_;
+    VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    GpuMesh static_mesh_, probe_;
+    gpu::Buffer patch_indices_;
+    std::uint32_t patch_index_count_ = 0;
+    std::size_t patch_vertex_count_ = 0;
+    std::array<Slot, gpu::kFramesInFlight> slots_;
+    FrameView view_;
+};
+
+}  // namespace echosim::render

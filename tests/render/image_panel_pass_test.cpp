@@ -1,0 +1,203 @@
+// Frames of several passes, read back: the scene, then an image panel over it, and a compute pass
+// before both filling the panel's image. Each pass's pixels are checked: outside the panel the
+// frame is the scene's own, inside it the image's texels. On lavapipe with validation on; the
+// count is read after every GPU object and the device are gone.
+#include "render/image_panel_pass.hpp"
+
+#include <array>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "app/default_scene.hpp"
+#include "echosim_test_kernels.hpp"
+#include "gpu/command_pool.hpp"
+#include "gpu/compute.hpp"
+#include "gpu/kernels/pattern_bindings.h"
+#include "gpu/kernels/pattern_expected.hpp"
+#include "gpu/offscreen.hpp"
+#include "render/scene_pass.hpp"
+#include "test_gpu.hpp"
+
+namespace echosim::render {
+namespace {
+
+constexpr VkExtent2D kTarget{480, 270};
+constexpr VkExtent2D kImage{16, 9};
+// 0.6 and 0.4 of 480 x 270: x 288..480, y 54..162, so 12 px per texel either way
+constexpr PanelRect kRect{0.6f, 0.2f, 0.4f, 0.4f};
+constexpr VkRect2D kPixels{{288, 54}, {192, 108}};
+
+using Texel = std::array<std::uint8_t, 4>;
+
+struct PixelCheck {
+    int outside_changed = 0;    // pixels outside the panel unlike the scene-only frame
+    int inside_wrong = 0;       // pixels inside unlike the texel under them (by more than 1/255)
+    int inside_like_scene = 0;  // pixels inside that are the scene's
+};
+
+// `frame` against the scene alone and the panel's image (`texel(i, j)`, nearest sampling)
+PixelCheck check(const io::RgbaImage& frame, const io::RgbaImage& scene_only, const std::function<Texel(std::uint32_t, std::uint32_t)>& texel)
+{
+    PixelCheck c;
+    const auto x0 = std::uint32_t(kPixels.offset.x), y0 = std::uint32_t(kPixels.offset.y);
+    for (std::uint32_t y = 0; y < frame.height; ++y)
+        for (std::uint32_t x = 0; x < frame.width; ++x) {
+            const std::uint8_t* got = frame.at(x, y);
+            const bool inside = x >= x0 && x < x0 + kPixels.extent.width && y >= y0 && y < y0 + kPixels.extent.height;
+            if (!inside) {
+                c.outside_changed += std::memcmp(got, scene_only.at(x, y), 4) != 0;
+                continue;
+            }
+            c.inside_like_scene += std::memcmp(got, scene_only.at(x, y), 4) == 0;
+            const Texel want = texel((x - x0) * kImage.width / kPixels.extent.width, (y - y0) * kImage.height / kPixels.extent.height);
+            for (int ch = 0; ch < 4; ++ch)
+                if (std::abs(int(got[ch]) - int(want[std::size_t(ch)])) > 1) {
+                    ++c.inside_wrong;
+                    break;
+                }
+        }
+    return c;
+}
+
+TEST(ImagePanel, CoversItsRectangleOfTheTarget)
+{
+    const VkRect2D r = panel_pixels(kRect, kTarget);
+    EXPECT_EQ(r.offset.x, kPixels.offset.x);
+    EXPECT_EQ(r.offset.y, kPixels.offset.y);
+    EXPECT_EQ(r.extent.width, kPixels.extent.width);
+    EXPECT_EQ(r.extent.height, kPixels.extent.height);
+    // clipped to the target
+    const VkRect2D out = panel_pixels({0.9f, -0.5f, 0.5f, 1.0f}, {100, 100});
+    EXPECT_EQ(out.offset.x, 90);
+    EXPECT_EQ(out.offset.y, 0);
+    EXPECT_EQ(out.extent.width, 10u);
+    EXPECT_EQ(out.extent.height, 50u);
+}
+
+TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
+{
+    // an image of random display values
+    std::vector<std::uint8_t> bytes(std::size_t(kImage.width) * kImage.height * 4);
+    std::mt19937 rng(5);
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = i % 4 == 3 ? 255 : std::uint8_t(rng() % 256);
+    const auto texel = [&](std::uint32_t i, std::uint32_t j) {
+        const std::uint8_t* t = &bytes[(std::size_t(j) * kImage.width + i) * 4];
+        return Texel{t[0], t[1], t[2], t[3]};
+    };
+
+    app::DefaultScene scene;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    io::RgbaImage scene_only, frames[gpu::kFramesInFlight];
+    {
+        gpu::Context ctx(test::lavapipe_options());
+        messages = ctx.validation_counter();
+        gpu::OffscreenPresenter presenter(ctx, kTarget);
+        gpu::CommandPool commands(ctx);
+        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
+        scene_pass.set_view(scene.frame_view());
+        ImagePanelPass panel(ctx, presenter.format(), kRect);
+        gpu::Image image(ctx, kImage, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                         VK_IMAGE_ASPECT_COLOR_BIT);
+        gpu::upload_image(commands, image, std::as_bytes(std::span(bytes)));
+        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
+        for (int s = 0; s < gpu::kFramesInFlight; ++s) panel.show(s, image, nearest);
+
+        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);
+        const gpu::FramePasses passes{&scene_pass, &panel};
+        for (auto& f : frames) presenter.render(passes, &f);  // slot 1, then slot 0
+    }
+    EXPECT_EQ(messages->load(), 0u);
+
+    for (const auto& f : frames) {
+        const PixelCheck c = check(f, scene_only, texel);
+        EXPECT_EQ(c.outside_changed, 0) << "the panel drew outside its rectangle, or the scene changed";
+        EXPECT_EQ(c.inside_wrong, 0) << "pixels of the panel unlike the image's texels";
+        // the scene was there before: the leg and the probe cover the right of the default view
+        EXPECT_LT(c.inside_like_scene, int(kPixels.extent.width * kPixels.extent.height) / 50);
+    }
+}
+
+// A compute pass of the frame: writes this slot's image with the pattern kernel (its seed per slot)
+// and leaves it for the panel's fragment shader.
+class PatternPass final : public gpu::FramePass {
+public:
+    explicit PatternPass(const gpu::Context& ctx)
+        : kernel_(ctx, test::kernels::pattern_comp, "pattern.comp", {gpu::BindingKind::storage_image, gpu::BindingKind::uniform_buffer}, 0)
+    {
+        for (int s = 0; s < gpu::kFramesInFlight; ++s) {
+            images_.emplace_back(ctx, kImage, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                 VK_IMAGE_ASPECT_COLOR_BIT);
+            const test::kernels::PatternParams params{seed(s), kImage.width, kImage.height, 0};
+            params_.emplace_back(ctx, sizeof params, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
+            params_.back().write(std::as_bytes(std::span(&params, 1)));
+        }
+        for (int s = 0; s < gpu::kFramesInFlight; ++s)
+            kernel_.bind(s, {gpu::Binding::storage(images_[std::size_t(s)]), gpu::Binding::uniform(params_[std::size_t(s)])});
+    }
+    static std::uint32_t seed(int slot) { return 17u + 100u * std::uint32_t(slot); }
+    const gpu::Image& image(int slot) const { return images_[std::size_t(slot)]; }
+
+    const char* name() const override { return "pattern (compute)"; }
+    gpu::TargetUse target_use() const override { return gpu::TargetUse::none(); }
+    void record(const gpu::PassContext& frame) override
+    {
+        const VkImage image = images_[std::size_t(frame.slot)].handle();
+        // this slot's last frame sampled it; all of it is written anew
+        gpu::transition(frame.cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        kernel_.record(frame.cmd, frame.slot, {}, gpu::Groups::cover(kImage, VkExtent2D{PATTERN_GROUP_X, PATTERN_GROUP_Y}));
+        gpu::transition(frame.cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
+
+private:
+    gpu::ComputeKernel kernel_;
+    std::vector<gpu::Image> images_;
+    std::vector<gpu::Buffer> params_;
+};
+
+TEST(ImagePanel, ShowsWhatAComputePassOfTheSameFrameWrote)
+{
+    app::DefaultScene scene;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    io::RgbaImage scene_only, frames[2 * gpu::kFramesInFlight];
+    {
+        gpu::Context ctx(test::lavapipe_options());
+        messages = ctx.validation_counter();
+        gpu::OffscreenPresenter presenter(ctx, kTarget);
+        gpu::CommandPool commands(ctx);
+        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
+        scene_pass.set_view(scene.frame_view());
+        PatternPass pattern(ctx);
+        ImagePanelPass panel(ctx, presenter.format(), kRect);
+        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
+        for (int s = 0; s < gpu::kFramesInFlight; ++s) panel.show(s, pattern.image(s), nearest);
+
+        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);  // slot 0
+        const gpu::FramePasses passes{&pattern, &scene_pass, &panel};
+        for (auto& f : frames) presenter.render(passes, &f);  // slots 1, 0, 1, 0
+    }
+    EXPECT_EQ(messages->load(), 0u);
+
+    for (std::size_t i = 0; i < std::size(frames); ++i) {
+        const int slot = int(i + 1) % gpu::kFramesInFlight;
+        const PixelCheck c = check(frames[i], scene_only, [&](std::uint32_t x, std::uint32_t y) {
+            return test::pattern_texel(x, y, PatternPass::seed(slot));
+        });
+        EXPECT_EQ(c.outside_changed, 0) << "frame " << i;
+        EXPECT_EQ(c.inside_wrong, 0) << "frame " << i << " (slot " << slot << "): the panel does not show its slot's pattern";
+    }
+    // the slots' images differ, so each frame showed its own slot's
+    EXPECT_NE(frames[0].pixels, frames[1].pixels);
+    EXPECT_EQ(frames[0].pixels, frames[2].pixels);
+}
+
+}  // namespace
+}  // namespace echosim::render
