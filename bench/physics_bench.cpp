@@ -36,12 +36,10 @@ void place_probe(Run& r, double t)
 {
     const double press = 10.0 * std::min(1.0, t / 0.1);
     const double slide = 20.0 * std::max(0.0, t - 0.1);
-    auto& p = r.sim.state.probe;
-    p.active = true;
-    p.orientation = Eigen::Quaterniond(r.rest.orientation.w, r.rest.orientation.x, r.rest.orientation.y, r.rest.orientation.z);
-    const Eigen::Vector3d origin(r.rest.position.x, r.rest.position.y, r.rest.position.z);
     const double across = 20.0 - std::abs(std::fmod(slide, 40.0) - 20.0);  // 0 -> 20 -> 0 mm
-    p.position = origin + press * (p.orientation * Eigen::Vector3d::UnitY()) + across * (p.orientation * Eigen::Vector3d::UnitX());
+    Pose face = pressed_along_beam(r.rest, press);
+    face.position += float(across) * r.rest.axis_x();
+    r.sim.state.probe = contact::probe_at(face);
 }
 
 Run make_run(const PhysicsFixture& f, int refine, const physics::PhysicsOptions& o)

@@ -21,6 +21,7 @@
 #include <Eigen/Geometry>
 
 #include "contact/patch_bvh.hpp"
+#include "core/pose.hpp"
 #include "core/probe_spec.hpp"
 
 namespace echosim::contact {
@@ -67,6 +68,18 @@ struct ProbeState {
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // probe frame to world
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // of the face, world [mm/s]
 };
+
+// The probe in contact with its face at `face` (a pose in world: core/pose.hpp; pressed_along_beam
+// presses one in), moving at `velocity` [mm/s].
+inline ProbeState probe_at(const Pose& face, const Eigen::Vector3d& velocity = Eigen::Vector3d::Zero())
+{
+    ProbeState p;
+    p.active = true;
+    p.position = Eigen::Vector3d(face.position.x, face.position.y, face.position.z);
+    p.orientation = Eigen::Quaterniond(face.orientation.w, face.orientation.x, face.orientation.y, face.orientation.z);
+    p.velocity = velocity;
+    return p;
+}
 
 struct Contact {
     std::array<std::uint32_t, 3> nodes{};

@@ -58,10 +58,7 @@ bool PhysicsRunner::command(const ProbeCommand& c)
 void PhysicsRunner::step_once()
 {
     const ProbeCommand& c = in_.read();
-    state_.probe.active = c.active;
-    state_.probe.position = c.position;
-    state_.probe.orientation = c.orientation;
-    state_.probe.velocity = c.velocity;
+    state_.probe = c;
     step(*model_, state_, team_);
 
     SurfaceSnapshot& s = out_.write_slot();

@@ -29,12 +29,9 @@
 
 namespace echosim::physics {
 
-struct ProbeCommand {
-    bool active = false;
-    Eigen::Vector3d position = Eigen::Vector3d::Zero();  // face centre [mm]
-    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [mm/s]
-};
+// Where the probe is to be: the contact's probe state, handed to the physics as a whole (make one
+// from a pose with contact::probe_at).
+using ProbeCommand = contact::ProbeState;
 
 // Why a command cannot drive the probe ("position is not finite", "orientation is not a rotation",
 // ...), or empty when it can.

@@ -38,15 +38,10 @@ void Session::advance(double dt)
     // the press speed along the beam is what the contact's damping feels; sliding is left to the
     // contact's own velocity estimate
     const Pose face = probe_.face();
-    physics::ProbeCommand c;
-    c.active = true;
-    c.orientation = Eigen::Quaterniond(face.orientation.w, face.orientation.x, face.orientation.y, face.orientation.z);
-    c.position = Eigen::Vector3d(face.position.x, face.position.y, face.position.z);
-    const Eigen::Vector3d beam = c.orientation * Eigen::Vector3d::UnitY();
-    c.velocity = (probe_.press_mm - sent_press_mm_) / dt * beam;
-    // a refused command (not a pose) leaves the physics on the last good one; the placement
-    // was checked above, so only a corrupt pose from a driver ends up here
-    physics_.command(c);
+    const glm::dvec3 beam(face.axis_y());
+    const double speed = (probe_.press_mm - sent_press_mm_) / dt;  // [mm/s]
+    // a refused command (not a pose) leaves the physics on the last good one
+    physics_.command(contact::probe_at(face, speed * Eigen::Vector3d(beam.x, beam.y, beam.z)));
     sent_press_mm_ = probe_.press_mm;
     time_ += dt;
     if (options_.clock == Clock::lock_step) physics_.step_to(time_);

@@ -43,10 +43,7 @@ struct DeformedPatch {
             state.external[k] = push(rng);
         }
         const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
-        state.probe.active = true;
-        state.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-        state.probe.position =
-            Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 4.0 * (state.probe.orientation * Eigen::Vector3d::UnitY());
+        state.probe = contact::probe_at(pressed_along_beam(rest, 4.0));
         accumulate_forces(compiled, state, team, true);
         internal_force = state.force;
         contact::collide(compiled.probe, compiled.penalty, state.probe, compiled.surface, state.x, state.v, state.contacts,

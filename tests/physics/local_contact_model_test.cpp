@@ -16,17 +16,11 @@ struct Pressed {
     TissueState& state = sim.state;
     Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
 
-    Eigen::Vector3d face(double press) const
-    {
-        const Eigen::Quaterniond q(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-        return Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * (q * Eigen::Vector3d::UnitY());
-    }
+    Eigen::Vector3d face(double press) const { return contact::probe_at(pressed_along_beam(rest, press)).position; }
     // holds the probe `press` mm in for `steps` steps
     void hold(double press, int steps)
     {
-        state.probe.active = true;
-        state.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-        state.probe.position = face(press);
+        state.probe = contact::probe_at(pressed_along_beam(rest, press));
         for (int i = 0; i < steps; ++i) sim.step();
     }
 };

@@ -44,10 +44,7 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     const tissue::TissueModel m = test::shipped_model(2);
     const PhysicsOptions o;
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
-    ProbeCommand c;
-    c.active = true;
-    c.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-    c.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 6.0 * (c.orientation * Eigen::Vector3d::UnitY());
+    const ProbeCommand c = contact::probe_at(pressed_along_beam(rest, 6.0));
 
     PhysicsRunner runner(m, o);
     runner.command(c);
@@ -80,10 +77,7 @@ TEST(PhysicsRunner, RefusesACommandThatIsNotAPoseAndKeepsTheLastGoodOne)
 {
     const tissue::TissueModel m = test::shipped_model(2);
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
-    ProbeCommand good;
-    good.active = true;
-    good.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-    good.position = Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + 6.0 * (good.orientation * Eigen::Vector3d::UnitY());
+    const ProbeCommand good = contact::probe_at(pressed_along_beam(rest, 6.0));
     PhysicsRunner runner(m, PhysicsOptions{});
     EXPECT_TRUE(runner.command(good));
     runner.step_to(0.02);

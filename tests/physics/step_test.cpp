@@ -59,10 +59,7 @@ double interaction_model_force(const tissue::TissueModel& m, int point, double d
 // The probe at its rest pose over the patch, pushed `press` mm in along its axis.
 void place_probe(TissueState& s, const Pose& rest, double press)
 {
-    s.probe.active = true;
-    s.probe.orientation = Eigen::Quaterniond(rest.orientation.w, rest.orientation.x, rest.orientation.y, rest.orientation.z);
-    s.probe.position =
-        Eigen::Vector3d(rest.position.x, rest.position.y, rest.position.z) + press * (s.probe.orientation * Eigen::Vector3d::UnitY());
+    s.probe = contact::probe_at(pressed_along_beam(rest, press));
 }
 
 TEST(Physics, StaticEquilibriumUnderAKnownLoadMatchesTheInteractionModel)
