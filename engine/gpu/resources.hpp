@@ -118,6 +118,10 @@ void upload_image(CommandPool& pool, const Image& image, std::span<const std::by
 // the host; the image is in `layout` before and after, and needs TRANSFER_SRC usage. Waits.
 std::vector<std::byte> download_image(CommandPool& pool, const Image& image, VkImageLayout layout);
 
+// Makes what `src_stage` wrote (`src_access`) visible to the host, once the submission's fence has
+// signalled: before the host reads a readback buffer or a host-visible storage buffer.
+void host_read_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access);
+
 // One image layout transition (synchronization2) covering all mips and layers of a colour or depth image.
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
                 VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,

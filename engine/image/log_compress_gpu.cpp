@@ -34,16 +34,7 @@ std::vector<std::uint32_t> LogCompressGpu::run(gpu::CommandPool& pool, std::span
     envelope_.write(std::as_bytes(envelope));
     pool.submit_and_wait([&](VkCommandBuffer cmd) {
         kernel_.record(cmd, kSlot, std::as_bytes(std::span(&params, 1)), gpu::Groups::cover(params.pixel_count, LOG_COMPRESS_GROUP_SIZE));
-        // the host reads the result after the fence
-        VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        barrier.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        barrier.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &barrier;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        gpu::host_read_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     });
     std::vector<std::uint32_t> out(envelope.size());
     std::memcpy(out.data(), image_.mapped(), out.size() * sizeof(std::uint32_t));
