@@ -4,7 +4,8 @@
 // global or thread_local, and a pool is never shared between threads.
 //
 // Besides handing out command buffers for per-frame recording (the presenters), a pool submits
-// one-shot work and waits for it: start-up uploads and tests, never per frame.
+// one-shot work and waits for it: start-up uploads, tests, and the offscreen presenter's frames
+// (each waited for by design: its image is read back); never a window's frames.
 #pragma once
 
 #include <functional>

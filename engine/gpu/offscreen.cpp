@@ -27,54 +27,37 @@ OffscreenPresenter::OffscreenPresenter(const Context& ctx, VkExtent2D extent)
       readback_(ctx, VkDeviceSize(extent.width) * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible),
       commands_(ctx)
 {
-    cmd_ = commands_.allocate();
-    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    check(vkCreateFence(ctx.device(), &fence_info, nullptr, &fence_), "vkCreateFence (offscreen)");
 }
 
-OffscreenPresenter::~OffscreenPresenter()
-{
-    vkQueueWaitIdle(ctx_.queue());
-    vkDestroyFence(ctx_.device(), fence_, nullptr);
-}
+OffscreenPresenter::~OffscreenPresenter() { vkQueueWaitIdle(ctx_.queue()); }
 
 void OffscreenPresenter::render(const FramePasses& passes, io::RgbaImage* out)
 {
-    const VkDevice dev = ctx_.device();
-    check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
+    commands_.submit_and_wait([&](VkCommandBuffer cmd) { record(cmd, passes, out != nullptr); });
+    if (out) {
+        out->width = color_.extent().width;
+        out->height = color_.extent().height;
+        out->pixels.resize(readback_.size());
+        std::memcpy(out->pixels.data(), readback_.mapped(), readback_.size());
+    }
+}
 
+void OffscreenPresenter::record(VkCommandBuffer cmd, const FramePasses& passes, bool readback)
+{
     const FrameTarget target{color_.handle(), color_.view(), color_.extent(), kFormat, kUsage};
     // the last frame's readback is over (its fence was waited for): the image starts as new, and
     // ends as the source of this frame's copy
     const TargetState initial{VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE};
     const TargetState final{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
-    passes.record(cmd_, slot_, target, initial, final);
+    passes.record(cmd, slot_, target, initial, final);
     slot_ = (slot_ + 1) % kFramesInFlight;
 
-    if (out) {
+    if (readback) {
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {target.extent.width, target.extent.height, 1};
-        vkCmdCopyImageToBuffer(cmd_, color_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1, &region);
-        host_read_barrier(cmd_, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    }
-    check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
-
-    check(vkResetFences(dev, 1, &fence_), "vkResetFences");
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd_;
-    check(vkQueueSubmit(ctx_.queue(), 1, &submit, fence_), "vkQueueSubmit (offscreen)");
-    check(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences (offscreen)");
-
-    if (out) {
-        out->width = target.extent.width;
-        out->height = target.extent.height;
-        out->pixels.resize(readback_.size());
-        std::memcpy(out->pixels.data(), readback_.mapped(), readback_.size());
+        vkCmdCopyImageToBuffer(cmd, color_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1, &region);
+        host_read_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     }
 }
 

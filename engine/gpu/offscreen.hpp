@@ -35,12 +35,12 @@ public:
     void render(const FramePasses& passes, io::RgbaImage* out);
 
 private:
+    void record(VkCommandBuffer cmd, const FramePasses& passes, bool readback);
+
     const Context& ctx_;
     Image color_;
     Buffer readback_;
     CommandPool commands_;
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
     int slot_ = 0;
 };
 

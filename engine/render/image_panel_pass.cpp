@@ -6,7 +6,7 @@
 #include <string>
 
 #include "echosim_graphics_shaders.hpp"
-#include "gpu/shader.hpp"
+#include "render/graphics_pipeline.hpp"
 #include "gpu/vk_error.hpp"
 #include "panel_bindings.h"
 
@@ -43,63 +43,15 @@ ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, P
         layout_info.pSetLayouts = &set_layout;
         gpu::check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout (panel)");
 
-        VkShaderModule vert = gpu::create_shader_module(dev, shaders::panel_vert, "panel.vert");
-        VkShaderModule frag = VK_NULL_HANDLE;
-        try {
-            frag = gpu::create_shader_module(dev, shaders::panel_frag, "panel.frag");
-        } catch (...) {
-            vkDestroyShaderModule(dev, vert, nullptr);
-            throw;
-        }
-        VkPipelineShaderStageCreateInfo stages[2]{};
-        stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr};
-        stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr};
-
-        // no vertex buffers: the vertex shader makes the quad's corners from their index
-        VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
-        VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        viewport.viewportCount = 1;
-        viewport.scissorCount = 1;
-        VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        raster.polygonMode = VK_POLYGON_MODE_FILL;
-        raster.cullMode = VK_CULL_MODE_NONE;
-        raster.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        VkPipelineColorBlendAttachmentState blend_attachment{};  // opaque: the panel replaces the scene under it
-        blend_attachment.colorWriteMask =
-            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-        VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        blend.attachmentCount = 1;
-        blend.pAttachments = &blend_attachment;
-        const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-        dynamic.dynamicStateCount = 2;
-        dynamic.pDynamicStates = dynamic_states;
-        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachmentFormats = &color_format_;
-
-        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        info.pNext = &rendering;
-        info.stageCount = 2;
-        info.pStages = stages;
-        info.pVertexInputState = &vertex_input;
-        info.pInputAssemblyState = &assembly;
-        info.pViewportState = &viewport;
-        info.pRasterizationState = &raster;
-        info.pMultisampleState = &multisample;
-        info.pDepthStencilState = &depth;
-        info.pColorBlendState = &blend;
-        info.pDynamicState = &dynamic;
-        info.layout = pipeline_layout_;
-        const VkResult result = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-        vkDestroyShaderModule(dev, vert, nullptr);
-        vkDestroyShaderModule(dev, frag, nullptr);
-        gpu::check(result, "vkCreateGraphicsPipelines (panel)");
+        // no vertex buffers: the vertex shader makes the quad's corners from their index; opaque:
+        // the panel replaces the scene under it
+        GraphicsPipelineDesc desc;
+        desc.name = "panel";
+        desc.vertex_spirv = shaders::panel_vert;
+        desc.fragment_spirv = shaders::panel_frag;
+        desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+        desc.color_format = color_format_;
+        pipeline_ = create_graphics_pipeline(dev, pipeline_layout_, desc);
     } catch (...) {
         destroy();
         throw;

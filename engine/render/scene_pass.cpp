@@ -7,14 +7,13 @@
 #include <glm/geometric.hpp>
 
 #include "echosim_graphics_shaders.hpp"
-#include "gpu/shader.hpp"
+#include "render/graphics_pipeline.hpp"
 #include "gpu/vk_error.hpp"
 #include "mesh_bindings.h"
 
 namespace echosim::render {
 
 using gpu::check;
-using gpu::create_shader_module;
 using gpu::kFramesInFlight;
 using gpu::MemoryUse;
 using gpu::transition;
@@ -120,81 +119,25 @@ void ScenePass::create_pipeline()
     layout_info.pPushConstantRanges = &push;
     check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout");
 
-    VkShaderModule vert = create_shader_module(dev, shaders::mesh_vert, "mesh.vert");
-    VkShaderModule frag = VK_NULL_HANDLE;
-    try {
-        frag = create_shader_module(dev, shaders::mesh_frag, "mesh.frag");
-    } catch (...) {
-        vkDestroyShaderModule(dev, vert, nullptr);
-        throw;
-    }
-    VkPipelineShaderStageCreateInfo stages[2]{};
-    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr};
-    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr};
-
-    VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[3] = {
+    const VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const VkVertexInputAttributeDescription attributes[3] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, position)},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, normal)},
         {2, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, color)},
     };
-    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vertex_input.vertexBindingDescriptionCount = 1;
-    vertex_input.pVertexBindingDescriptions = &vertex_binding;
-    vertex_input.vertexAttributeDescriptionCount = 3;
-    vertex_input.pVertexAttributeDescriptions = attributes;
-
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = 1;
-    viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    GraphicsPipelineDesc desc;
+    desc.name = "mesh";
+    desc.vertex_spirv = shaders::mesh_vert;
+    desc.fragment_spirv = shaders::mesh_frag;
+    desc.vertex_bindings = std::span(&vertex_binding, 1);
+    desc.vertex_attributes = attributes;
     // meshes wind counter-clockwise seen from outside (scene::orient_to_normals); Vulkan's y-down
     // framebuffer and our y-flipped projection cancel, so front faces stay counter-clockwise
-    raster.cullMode = VK_CULL_MODE_BACK_BIT;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
-    VkPipelineColorBlendAttachmentState blend_attachment{};
-    blend_attachment.colorWriteMask =
-        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend.attachmentCount = 1;
-    blend.pAttachments = &blend_attachment;
-    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic.dynamicStateCount = 2;
-    dynamic.pDynamicStates = dynamic_states;
-
-    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &color_format_;
-    rendering.depthAttachmentFormat = depth_format_;
-
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.pNext = &rendering;
-    info.stageCount = 2;
-    info.pStages = stages;
-    info.pVertexInputState = &vertex_input;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewport;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depth;
-    info.pColorBlendState = &blend;
-    info.pDynamicState = &dynamic;
-    info.layout = pipeline_layout_;
-    const VkResult result = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-    vkDestroyShaderModule(dev, vert, nullptr);
-    vkDestroyShaderModule(dev, frag, nullptr);
-    check(result, "vkCreateGraphicsPipelines (mesh)");
+    desc.cull = VK_CULL_MODE_BACK_BIT;
+    desc.front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    desc.color_format = color_format_;
+    desc.depth_format = depth_format_;
+    pipeline_ = create_graphics_pipeline(dev, pipeline_layout_, desc);
 }
 
 void ScenePass::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,

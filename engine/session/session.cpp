@@ -8,8 +8,8 @@
 namespace echosim::session {
 
 Session::Session(const SessionOptions& options)
-    : options_(options), model_(load_simulation_model(leg_, options.refine)), physics_(model_, options.physics),
-      deformer_(leg_, model_), patch_(leg_.patch().rest.vertices)
+    : options_(options), compiled_(physics::compile_model(load_simulation_model(leg_, options.refine), options.physics)),
+      physics_(compiled_), deformer_(leg_, compiled_->tissue), patch_(leg_.patch().rest.vertices)
 {
     probe_.rest = leg_.probe_rest_pose(0.5f, 0.5f);
     view_.patch = &patch_;

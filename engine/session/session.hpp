@@ -3,7 +3,8 @@
 //
 // It owns:
 //   - the leg (the skin the tissue model is built on, and the render patch it deforms);
-//   - the tissue model at the resolution the physics runs at in real time, and its physics runner;
+//   - the tissue model at the resolution the physics runs at in real time, compiled once for the
+//     physics, and its physics runner;
 //   - the probe: where the driver rests it on the skin and how far it presses it in;
 //   - the one path by which probe commands reach the physics (below);
 //   - the patch deformer that carries the tissue's surface onto the render patch;
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "core/pose.hpp"
+#include "physics/compiled_model.hpp"
 #include "physics/physics_options.hpp"
 #include "physics/physics_runner.hpp"
 #include "scene/leg.hpp"
@@ -72,7 +74,8 @@ public:
     Session& operator=(const Session&) = delete;
 
     const scene::LegModel& leg() const { return leg_; }
-    const tissue::TissueModel& tissue_model() const { return model_; }
+    const tissue::TissueModel& tissue_model() const { return compiled_->tissue; }
+    const physics::CompiledModel& compiled_model() const { return *compiled_; }
     Clock clock() const { return options_.clock; }
     double time() const { return time_; }  // [s] of the session clock
 
@@ -98,7 +101,7 @@ public:
 private:
     SessionOptions options_;
     scene::LegModel leg_;
-    tissue::TissueModel model_;
+    std::shared_ptr<const physics::CompiledModel> compiled_;
     physics::PhysicsRunner physics_;
     PatchDeformer deformer_;
     ProbePlacement probe_;
