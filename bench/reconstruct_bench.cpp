@@ -24,8 +24,7 @@ struct ReconstructFixture {
     {
         const scene::LegModel leg;
         echo::ScanSpec spec;
-        spec.pixel_mm = 40.0 / width;
-        spec.width_mm = 40.0;
+        spec.pixel_mm = spec.width_mm / width;  // the probe's face spans the frame's width
         spec.depth_mm = spec.pixel_mm * height;
         std::mt19937 rng(1);
         std::normal_distribution<double> g(0.0, 1.0);

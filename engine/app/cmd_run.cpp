@@ -80,7 +80,7 @@ int run_window(const RunArgs& args)
             const float dt = std::clamp(std::chrono::duration<float>(now - last).count(), 1e-4f, 0.1f);
             last = now;
 
-            const RunInput in = input->poll(window, dt);
+            const RunInput in = input->poll(dt);
             if (in.quit) break;
             apply_to_window(in, window);
             scene.camera.orbit(in.orbit_yaw, in.orbit_pitch);

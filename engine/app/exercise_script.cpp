@@ -6,7 +6,7 @@
 
 namespace echosim::app {
 
-RunInput ExerciseScript::poll(gpu::Window&, float)
+RunInput ExerciseScript::poll(float)
 {
     RunInput in;
     switch (iteration_) {

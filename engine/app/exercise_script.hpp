@@ -13,7 +13,7 @@ namespace echosim::app {
 class ExerciseScript : public InputSource {
 public:
     explicit ExerciseScript(glm::ivec2 window_size) : size_(window_size) {}
-    RunInput poll(gpu::Window& window, float dt) override;
+    RunInput poll(float dt) override;
 
 private:
     glm::ivec2 size_;  // the window's size at the start [px]

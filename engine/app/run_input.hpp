@@ -7,10 +7,6 @@
 
 #include <glm/vec2.hpp>
 
-namespace echosim::gpu {
-class Window;
-}
-
 namespace echosim::app {
 
 struct RunInput {
@@ -33,7 +29,7 @@ class InputSource {
 public:
     virtual ~InputSource() = default;
     // The input since the last poll; `dt` is the frame's duration [s].
-    virtual RunInput poll(gpu::Window& window, float dt) = 0;
+    virtual RunInput poll(float dt) = 0;
 };
 
 }  // namespace echosim::app

@@ -52,7 +52,7 @@ WindowInput::~WindowInput()
     glfwSetWindowUserPointer(window_, nullptr);
 }
 
-RunInput WindowInput::poll(gpu::Window&, float dt)
+RunInput WindowInput::poll(float dt)
 {
     Pending& k = pending_;
     RunInput in;

@@ -6,6 +6,10 @@
 
 #include "app/run_input.hpp"
 
+namespace echosim::gpu {
+class Window;
+}
+
 struct GLFWwindow;
 
 namespace echosim::app {
@@ -17,7 +21,7 @@ public:
     WindowInput(const WindowInput&) = delete;
     WindowInput& operator=(const WindowInput&) = delete;
 
-    RunInput poll(gpu::Window& window, float dt) override;
+    RunInput poll(float dt) override;
 
     // what the callbacks collect between polls
     struct Pending {
