@@ -1,7 +1,8 @@
 // The physics thread (DESIGN.md §2, "Threads"): steps the tissue at a fixed rate and publishes a
 // snapshot of the surface after every step. Hand-offs, all lock-free triple buffers:
-//   in:  ProbeCommand      (latest wins) from whoever moves the probe (window, scripted exam, haptics)
-//   out: SurfaceSnapshot   (latest wins) to one reader, the renderer
+//   in:  ProbeCommand      (latest wins) from one producer thread, the one that moves the probe (the
+//                          simulator session's driver: session/session.hpp)
+//   out: SurfaceSnapshot   (latest wins) to one reader, the session's driver, which draws it
 //   out: LocalContactModel (latest wins) to one reader, the haptic thread
 // Headless runs do not start the thread: step_to(t) runs the same steps in the caller's thread on
 // simulated time, so an exam or a test is reproducible step for step (on one machine, with one
@@ -63,11 +64,11 @@ public:
     PhysicsRunner(const PhysicsRunner&) = delete;
     PhysicsRunner& operator=(const PhysicsRunner&) = delete;
 
-    // any one thread. A command with an error (probe_command_error) is refused, counted and false:
+    // one producer thread. A command with an error (probe_command_error) is refused, counted and false:
     // the probe keeps its last good command, so a glitching device cannot blow up the tissue;
     // the caller, who knows the device, reports it.
     bool command(const ProbeCommand& c);
-    // the renderer (one reader)
+    // one reader thread (the session's driver)
     const SurfaceSnapshot& latest() { return out_.read(); }
     // the haptic thread (one reader): the skin under the probe, to render between steps
     const LocalContactModel& latest_contact() { return contact_out_.read(); }

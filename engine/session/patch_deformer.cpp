@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace echosim::session {
 
@@ -32,6 +34,9 @@ PatchDeformer::PatchDeformer(const scene::LegModel& leg, const tissue::TissueMod
 
 void PatchDeformer::apply(std::span<const float> positions, std::vector<scene::Vertex>& patch) const
 {
+    if (positions.size() != 3 * tissue_rest_.size())
+        throw std::invalid_argument("patch deformer: " + std::to_string(positions.size()) + " coordinates for a tissue of " +
+                                    std::to_string(tissue_rest_.size()) + " nodes");
     for (std::size_t k = 0; k < weights_.size(); ++k) {
         scratch_.vertices[k] = rest_.vertices[k];
         const Weights& w = weights_[k];

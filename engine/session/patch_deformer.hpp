@@ -18,7 +18,8 @@ class PatchDeformer {
 public:
     PatchDeformer(const scene::LegModel& leg, const tissue::TissueModel& model);
 
-    // `positions`: 3 per tissue node [mm]; `patch`: the render patch, rewritten from its rest shape
+    // `positions`: 3 per tissue node [mm]; `patch`: the render patch, rewritten from its rest shape.
+    // Throws std::invalid_argument when `positions` is not 3 per node of the model it was made for.
     void apply(std::span<const float> positions, std::vector<scene::Vertex>& patch) const;
 
 private:

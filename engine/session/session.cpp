@@ -23,7 +23,11 @@ void Session::stop() { physics_.stop(); }
 
 void Session::place_probe(const ProbePlacement& placement)
 {
-    if (!(placement.press_mm >= 0)) throw std::invalid_argument("probe press " + std::to_string(placement.press_mm) + " mm: must be >= 0");
+    if (!(placement.press_mm >= 0) || !std::isfinite(placement.press_mm))
+        throw std::invalid_argument("probe press " + std::to_string(placement.press_mm) + " mm: must be finite and >= 0");
+    // the physics would refuse it at the next advance, and the view would show a probe that is not simulated
+    if (const std::string why = physics::probe_command_error(contact::probe_at(placement.face())); !why.empty())
+        throw std::invalid_argument("probe pose: " + why);
     probe_ = placement;
 }
 
@@ -40,11 +44,14 @@ void Session::advance(double dt)
     const Pose face = probe_.face();
     const glm::dvec3 beam(face.axis_y());
     const double speed = (probe_.press_mm - sent_press_mm_) / dt;  // [mm/s]
-    // a refused command (not a pose) leaves the physics on the last good one
-    physics_.command(contact::probe_at(face, speed * Eigen::Vector3d(beam.x, beam.y, beam.z)));
+    physics_.command(contact::probe_at(face, speed * Eigen::Vector3d(beam.x, beam.y, beam.z)));  // checked in place_probe
     sent_press_mm_ = probe_.press_mm;
-    time_ += dt;
-    if (options_.clock == Clock::lock_step) physics_.step_to(time_);
+    if (options_.clock == Clock::lock_step) {
+        time_ += dt;
+        physics_.step_to(time_);
+    } else {
+        time_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
 }
 
 void Session::press_and_settle(const Pose& rest, double press_mm, double settle_s)

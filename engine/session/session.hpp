@@ -8,9 +8,10 @@
 //   - the probe: where the driver rests it on the skin and how far it presses it in;
 //   - the one path by which probe commands reach the physics (below);
 //   - the patch deformer that carries the tissue's surface onto the render patch;
-//   - the clock: real time (the physics thread steps on its own, every PhysicsOptions::time_step of
-//     wall-clock time), or lock-step on simulated time (advance() runs the steps in the caller's
-//     thread: headless runs, exams and tests are reproducible step for step).
+//   - the clock: real time (wall-clock seconds since the session began; the physics thread steps on
+//     its own, every PhysicsOptions::time_step of them), or lock-step on simulated time (advance()
+//     runs the steps in the caller's thread: headless runs, exams and tests are reproducible step
+//     for step).
 // The echographic image pipeline (issue 10) and the input and haptic devices (issue 11) join it
 // here; until they exist it holds nothing in their place.
 //
@@ -23,6 +24,7 @@
 // (the driver thread is its one reader). Nothing else crosses threads.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -77,16 +79,20 @@ public:
     const tissue::TissueModel& tissue_model() const { return compiled_->tissue; }
     const physics::CompiledModel& compiled_model() const { return *compiled_; }
     Clock clock() const { return options_.clock; }
-    double time() const { return time_; }  // [s] of the session clock
+    double time() const { return time_; }  // [s] of the session clock, as of the last advance()
 
-    // The probe the driver holds; it reaches the physics at the next advance().
+    // The probe the driver holds; it reaches the physics at the next advance(). Throws
+    // std::invalid_argument naming what is wrong with a placement the physics could not take (a
+    // position that is not finite, a quaternion that is not a rotation, a negative press); the
+    // probe stays where it was.
     const ProbePlacement& probe() const { return probe_; }
     void place_probe(const ProbePlacement& placement);
     // The probe on the exam patch at (u, v) in [0,1]^2, pressed `press_mm`.
     void place_probe_on_patch(float u, float v, double press_mm);
 
-    // Moves the clock on by `dt` [s] and sends the probe to the physics; in lock-step, the physics
-    // is stepped to the new time here.
+    // Sends the probe to the physics, its press speed taken over `dt` [s] (the frame's duration, > 0),
+    // and moves the clock on: in lock-step by `dt`, stepping the physics to the new time here; in
+    // real time to the wall clock.
     void advance(double dt);
     // Lock-step: presses the probe resting at `rest` in to `press_mm` over 0.1 s, then holds it
     // until `settle_s` of simulated time, so the tissue settles under it.
@@ -107,6 +113,7 @@ private:
     ProbePlacement probe_;
     double sent_press_mm_ = 0;  // the press of the last command sent [mm]
     double time_ = 0;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();  // real time's origin
     std::int64_t shown_step_ = 0;  // the physics step the view shows (0: the rest state, as the leg gives it)
     std::vector<scene::Vertex> patch_;
     SessionView view_;

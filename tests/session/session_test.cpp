@@ -1,5 +1,7 @@
 #include "session/session.hpp"
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -95,6 +97,13 @@ TEST(Session, RefusesWhatIsNotAProbeOrATime)
     Session s;
     EXPECT_THROW(s.place_probe({s.leg().probe_rest_pose(0.5f, 0.5f), -1.0}), std::invalid_argument);
     EXPECT_THROW(s.place_probe({s.leg().probe_rest_pose(0.5f, 0.5f), std::nan("")}), std::invalid_argument);
+    Pose not_a_rotation = s.leg().probe_rest_pose(0.5f, 0.5f);
+    not_a_rotation.orientation = glm::quat(2.0f, 0.0f, 0.0f, 0.0f);
+    EXPECT_THROW(s.place_probe({not_a_rotation, 1.0}), std::invalid_argument);
+    Pose far_away = s.leg().probe_rest_pose(0.5f, 0.5f);
+    far_away.position.x = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(s.place_probe({far_away, 1.0}), std::invalid_argument);
+    EXPECT_EQ(s.probe().rest.position, s.leg().probe_rest_pose(0.5f, 0.5f).position) << "a refused placement moves nothing";
     EXPECT_THROW(s.advance(0.0), std::invalid_argument);
     EXPECT_THROW(s.advance(-1e-3), std::invalid_argument);
     Session real_time({.clock = Clock::real_time});
