@@ -29,7 +29,7 @@ OffscreenPresenter::OffscreenPresenter(const Context& ctx, VkExtent2D extent)
 {
 }
 
-OffscreenPresenter::~OffscreenPresenter() { vkQueueWaitIdle(ctx_.queue()); }
+OffscreenPresenter::~OffscreenPresenter() { ctx_.wait_idle(); }
 
 void OffscreenPresenter::render(const FramePasses& passes, io::RgbaImage* out)
 {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <span>
 #include <stdexcept>
 
 #define GLFW_INCLUDE_VULKAN
@@ -131,7 +132,7 @@ WindowPresenter::WindowPresenter(const Context& ctx, Window& window) : ctx_(ctx)
 WindowPresenter::~WindowPresenter()
 {
     const VkDevice dev = ctx_.device();
-    vkDeviceWaitIdle(dev);
+    ctx_.wait_idle();
     destroy_swapchain_views();
     if (swapchain_) vkDestroySwapchainKHR(dev, swapchain_, nullptr);
     for (Frame& f : frames_) {
@@ -154,7 +155,7 @@ void WindowPresenter::destroy_swapchain_views()
 void WindowPresenter::create_swapchain()
 {
     const VkDevice dev = ctx_.device();
-    vkDeviceWaitIdle(dev);
+    ctx_.wait_idle();
     VkSurfaceCapabilitiesKHR caps;
     check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx_.physical_device(), surface_, &caps),
           "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
@@ -255,7 +256,7 @@ bool WindowPresenter::draw(const FramePasses& passes)
     submit.pCommandBuffers = &f.cmd;
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &render_done_[index];
-    check(vkQueueSubmit(ctx_.queue(), 1, &submit, f.in_flight), "vkQueueSubmit (frame)");
+    ctx_.submit(std::span(&submit, 1), f.in_flight, "vkQueueSubmit (frame)");
 
     VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
     present.waitSemaphoreCount = 1;
@@ -263,7 +264,7 @@ bool WindowPresenter::draw(const FramePasses& passes)
     present.swapchainCount = 1;
     present.pSwapchains = &swapchain_;
     present.pImageIndices = &index;
-    const VkResult presented = vkQueuePresentKHR(ctx_.queue(), &present);
+    const VkResult presented = ctx_.present(present);
     frame_ = (frame_ + 1) % kFramesInFlight;
     if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
         create_swapchain();

@@ -64,7 +64,7 @@ void ImagePanelPass::destroy()
 {
     const VkDevice dev = ctx_.device();
     // a presenter may still have frames in flight that use the pipeline
-    vkDeviceWaitIdle(dev);
+    ctx_.wait_idle();
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
     pipeline_ = VK_NULL_HANDLE;

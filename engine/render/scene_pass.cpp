@@ -97,7 +97,7 @@ void ScenePass::destroy()
 {
     const VkDevice dev = ctx_.device();
     // a presenter may still have frames in flight that use these objects
-    vkDeviceWaitIdle(dev);
+    ctx_.wait_idle();
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
     if (descriptor_pool_) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);
