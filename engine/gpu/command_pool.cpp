@@ -41,6 +41,8 @@ VkCommandBuffer CommandPool::allocate()
     return cmd;
 }
 
+void CommandPool::free(VkCommandBuffer cmd) { vkFreeCommandBuffers(ctx_.device(), pool_, 1, &cmd); }
+
 void CommandPool::submit_and_wait(const std::function<void(VkCommandBuffer)>& record)
 {
     const VkDevice dev = ctx_.device();

@@ -97,7 +97,8 @@ TEST(FramePasses, EachPassGetsTheTargetInItsLayoutInOrder)
     {
         Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
-        OffscreenPresenter presenter(ctx, kExtent);
+        CommandPool commands(ctx);
+        OffscreenPresenter presenter(commands, kExtent);
         // transfer destination, then colour attachment, then transfer source for the readback
         const FramePasses passes{&witness, &clear, &overlay};
         for (auto& f : frames) presenter.render(passes, &f);

@@ -96,8 +96,8 @@ TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
     {
         gpu::Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
-        gpu::OffscreenPresenter presenter(ctx, kTarget);
         gpu::CommandPool commands(ctx);
+        gpu::OffscreenPresenter presenter(commands, kTarget);
         ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
         scene_pass.set_view(scene.frame_view());
         ImagePanelPass panel(ctx, presenter.format(), kRect);
@@ -171,8 +171,8 @@ TEST(ImagePanel, ShowsWhatAComputePassOfTheSameFrameWrote)
     {
         gpu::Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
-        gpu::OffscreenPresenter presenter(ctx, kTarget);
         gpu::CommandPool commands(ctx);
+        gpu::OffscreenPresenter presenter(commands, kTarget);
         ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
         scene_pass.set_view(scene.frame_view());
         PatternPass pattern(ctx);
