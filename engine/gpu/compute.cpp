@@ -12,7 +12,8 @@ namespace {
 std::uint32_t groups_for(std::uint32_t items, std::uint32_t group)
 {
     if (group == 0) throw std::invalid_argument("a workgroup of size 0");
-    return (items + group - 1) / group;
+    // not (items + group - 1) / group: that wraps for items near UINT32_MAX
+    return items / group + (items % group != 0 ? 1u : 0u);
 }
 
 }  // namespace

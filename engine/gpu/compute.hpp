@@ -45,7 +45,8 @@ public:
     ComputeKernel& operator=(const ComputeKernel&) = delete;
 
     // Points slot `slot`'s bindings at these resources (binding i = resources[i], of the declared
-    // kind); set-up work: throws on a wrong slot, count or kind.
+    // kind); set-up work: throws on a wrong slot, count or kind. A kernel with no bindings needs
+    // no bind.
     void bind(int slot, std::span<const Binding> resources) { descriptors_.bind(slot, resources); }
     void bind(int slot, std::initializer_list<Binding> resources) { bind(slot, std::span(resources.begin(), resources.size())); }
     // Records a dispatch of `groups` workgroups with slot `slot`'s bindings into `cmd`. Barriers

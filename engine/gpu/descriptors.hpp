@@ -49,7 +49,7 @@ public:
 
     VkDescriptorSetLayout layout() const { return layout_; }
     VkDescriptorSet set(int slot) const { return sets_[std::size_t(slot)]; }
-    // whether bind() has been called for the slot
+    // whether the slot's set points at resources: bind() was called for it, or there is nothing to bind
     bool bound(int slot) const { return bound_[std::size_t(slot)]; }
     std::size_t size() const { return kinds_.size(); }
 
