@@ -58,7 +58,13 @@ ComputeKernel::ComputeKernel(const Context& ctx, std::span<const std::uint32_t> 
     }
 }
 
-ComputeKernel::~ComputeKernel() { destroy(); }
+ComputeKernel::~ComputeKernel()
+{
+    // frames in flight may still dispatch it (gpu/frame.hpp, "Lifetime"); the descriptor sets go
+    // after this, with the member that holds them
+    ctx_.wait_idle();
+    destroy();
+}
 
 void ComputeKernel::destroy()
 {

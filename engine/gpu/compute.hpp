@@ -6,6 +6,9 @@
 // Frame slots: a kernel holds one descriptor set per frame slot (kFramesInFlight), so the frame
 // being recorded can point its bindings at its own resources while the GPU still runs the other
 // slot's dispatch. Bind a slot only when the GPU is done with that slot's last dispatch.
+//
+// Lifetime: the destructor waits for the device (Context::wait_idle) before it destroys the
+// pipeline and the descriptor sets, which frames in flight may still use (frame.hpp).
 #pragma once
 
 #include <cstdint>

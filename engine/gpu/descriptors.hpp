@@ -1,6 +1,9 @@
 // Descriptor bindings of several kinds, and one descriptor set of them per frame slot: what a
 // compute kernel or a graphics pass reads and writes, pointed at the resources of the frame being
 // recorded while the GPU may still run the other slot's frame.
+//
+// Lifetime: destruction waits for nothing; the owner (a pass, a compute kernel) waits for the
+// device first (gpu/frame.hpp, "Lifetime").
 #pragma once
 
 #include <cstdint>

@@ -25,7 +25,14 @@
 // it rewrites every frame (uniforms, vertices, descriptor sets); when it records slot s, the GPU is
 // done with the previous frame of slot s (the presenter waited for its fence).
 //
-// Threading: the passes of a frame are recorded on the thread that calls the presenter.
+// Lifetime: frames in flight may still use a pass's GPU objects (pipelines, descriptor sets,
+// per-slot buffers and images, compute kernels) after its last record(). So every pass, and every
+// GPU object a pass owns that waits for nothing itself (ComputeKernel does; SlotDescriptors and the
+// resources of resources.hpp do not: their owners do), waits for the device (Context::wait_idle)
+// before it is destroyed. Destruction is tear-down work, never per frame.
+//
+// Threading: the passes of a frame are recorded on the thread that calls the presenter, into the
+// command buffers of that thread's pool; the frame is submitted through the Context.
 #pragma once
 
 #include <initializer_list>

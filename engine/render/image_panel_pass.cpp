@@ -58,13 +58,17 @@ ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, P
     }
 }
 
-ImagePanelPass::~ImagePanelPass() { destroy(); }
+ImagePanelPass::~ImagePanelPass()
+{
+    // frames in flight may still use the pipeline and the descriptor sets (gpu/frame.hpp,
+    // "Lifetime"); the sets go after this, with their member
+    ctx_.wait_idle();
+    destroy();
+}
 
 void ImagePanelPass::destroy()
 {
     const VkDevice dev = ctx_.device();
-    // a presenter may still have frames in flight that use the pipeline
-    ctx_.wait_idle();
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
     pipeline_ = VK_NULL_HANDLE;

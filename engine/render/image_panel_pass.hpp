@@ -10,6 +10,9 @@
 //
 // Frame slots: each slot has its own image binding, so the image pipeline can fill one slot's image
 // while the other slot's frame is on screen. A slot shown no image draws nothing.
+//
+// Lifetime: the destructor waits for the device before it destroys what frames in flight may use
+// (gpu/frame.hpp).
 #pragma once
 
 #include <vulkan/vulkan.h>

@@ -91,13 +91,17 @@ ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkForma
     }
 }
 
-ScenePass::~ScenePass() { destroy(); }
+ScenePass::~ScenePass()
+{
+    // frames in flight may still use the pipeline, the descriptor sets and the slots' buffers
+    // (gpu/frame.hpp, "Lifetime"); the members go after this
+    ctx_.wait_idle();
+    destroy();
+}
 
 void ScenePass::destroy()
 {
     const VkDevice dev = ctx_.device();
-    // a presenter may still have frames in flight that use these objects
-    ctx_.wait_idle();
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
     if (descriptor_pool_) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);

@@ -5,6 +5,9 @@
 //
 // Frame slots: per slot the pass keeps its own uniform buffer, patch vertex buffer and depth image
 // (the presenter guarantees the GPU is done with a slot before it is recorded again).
+//
+// Lifetime: the destructor waits for the device before it destroys what frames in flight may use
+// (gpu/frame.hpp).
 #pragma once
 
 #include <array>
