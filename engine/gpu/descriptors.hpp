@@ -57,8 +57,10 @@ public:
     std::size_t size() const { return kinds_.size(); }
 
     // Points slot `slot`'s bindings at these resources (binding i = resources[i], of the declared
-    // kind). Set-up work: throws on a wrong slot, count or kind. Only while the GPU is done with
-    // the slot's last frame.
+    // kind); throws on a wrong slot, count or kind. Only while the GPU is done with the slot's last
+    // frame: at set-up (before any frame), or from inside the owning pass's record() for that very
+    // slot (the presenter has waited for the slot's previous frame, gpu/frame.hpp); never from a
+    // caller outside the frame, which cannot know which slot is idle.
     void bind(int slot, std::span<const Binding> resources);
 
 private:

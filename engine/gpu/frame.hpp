@@ -23,7 +23,9 @@
 //
 // Frame slots: up to kFramesInFlight frames may be in flight. A pass keeps per-slot copies of what
 // it rewrites every frame (uniforms, vertices, descriptor sets); when it records slot s, the GPU is
-// done with the previous frame of slot s (the presenter waited for its fence).
+// done with the previous frame of slot s (the presenter waited for its fence), and only then: so a
+// pass re-points slot s's descriptor sets from inside its record() for slot s (or at set-up, before
+// any frame), never from outside, where the caller cannot know which slot is idle.
 //
 // Lifetime: frames in flight may still use a pass's GPU objects (pipelines, descriptor sets,
 // per-slot buffers and images, compute kernels) after its last record(). So every pass, and every
