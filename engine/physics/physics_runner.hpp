@@ -1,7 +1,7 @@
 // The physics thread (DESIGN.md §2, "Threads"): steps the tissue at a fixed rate and publishes a
 // snapshot of the surface after every step. Hand-offs, all lock-free triple buffers:
 //   in:  ProbeCommand      (latest wins) from whoever moves the probe (window, scripted exam, haptics)
-//   out: SurfaceSnapshot   (latest wins) to one reader, the renderer
+//   out: SurfaceSnapshot   (latest wins) to one reader, the session (on the drawing thread)
 //   out: LocalContactModel (latest wins) to one reader, the haptic thread
 // Headless runs do not start the thread: step_to(t) runs the same steps in the caller's thread on
 // simulated time, so an exam or a test is reproducible step for step (on one machine, with one
@@ -67,7 +67,7 @@ public:
     // the probe keeps its last good command, so a glitching device cannot blow up the tissue;
     // the caller, who knows the device, reports it.
     bool command(const ProbeCommand& c);
-    // the renderer (one reader)
+    // the session, on the drawing thread (one reader)
     const SurfaceSnapshot& latest() { return out_.read(); }
     // the haptic thread (one reader): the skin under the probe, to render between steps
     const LocalContactModel& latest_contact() { return contact_out_.read(); }
