@@ -101,6 +101,23 @@ struct RandomImage {
     }
 };
 
+// What every frame here is drawn with: lavapipe with validation, this thread's pool, the offscreen
+// presenter (which alternates the slots), the scene pass, and the panel over it, sampling nearest
+// (the texels as they are). The test reads the validation count after it is gone.
+struct PanelGpu {
+    gpu::Context ctx{test::lavapipe_options()};
+    gpu::CommandPool commands{ctx};
+    gpu::OffscreenPresenter presenter{commands, kTarget};
+    const gpu::Sampler nearest{ctx, gpu::Filter::nearest};
+    ScenePass scene_pass;
+    ImagePanelPass panel{ctx, presenter.format(), kRect};
+
+    explicit PanelGpu(app::DefaultScene& scene) : scene_pass(ctx, commands, presenter.format(), scene.meshes())
+    {
+        scene_pass.set_view(scene.frame_view());
+    }
+};
+
 TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
 {
     const RandomImage texel(5);
@@ -109,20 +126,14 @@ TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     io::RgbaImage scene_only, frames[gpu::kFramesInFlight];
     {
-        gpu::Context ctx(test::lavapipe_options());
-        messages = ctx.validation_counter();
-        gpu::CommandPool commands(ctx);
-        gpu::OffscreenPresenter presenter(commands, kTarget);
-        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        scene_pass.set_view(scene.frame_view());
-        ImagePanelPass panel(ctx, presenter.format(), kRect);
-        const gpu::Image image = texel.upload(commands);
-        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
-        panel.show(image, nearest);
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
+        const gpu::Image image = texel.upload(rig.commands);
+        rig.panel.show(image, rig.nearest);
 
-        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);
-        const gpu::FramePasses passes{&scene_pass, &panel};
-        for (auto& f : frames) presenter.render(passes, &f);  // slot 1, then slot 0
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
+        const gpu::FramePasses passes{&rig.scene_pass, &rig.panel};
+        for (auto& f : frames) rig.presenter.render(passes, &f);  // slot 1, then slot 0
     }
     EXPECT_EQ(messages->load(), 0u);
 
@@ -149,22 +160,16 @@ TEST(ImagePanel, EachFrameShowsTheImageShownBeforeIt)
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     io::RgbaImage scene_only, frames[std::size(show)];
     {
-        gpu::Context ctx(test::lavapipe_options());
-        messages = ctx.validation_counter();
-        gpu::CommandPool commands(ctx);
-        gpu::OffscreenPresenter presenter(commands, kTarget);
-        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        scene_pass.set_view(scene.frame_view());
-        ImagePanelPass panel(ctx, presenter.format(), kRect);
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
         std::vector<gpu::Image> images;
-        for (const RandomImage& t : texels) images.push_back(t.upload(commands));
-        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
+        for (const RandomImage& t : texels) images.push_back(t.upload(rig.commands));
 
-        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);
-        const gpu::FramePasses passes{&scene_pass, &panel};
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
+        const gpu::FramePasses passes{&rig.scene_pass, &rig.panel};
         for (std::size_t f = 0; f < std::size(show); ++f) {
-            if (show[f] != kNone) panel.show(images[std::size_t(show[f])], nearest);
-            presenter.render(passes, &frames[f]);
+            if (show[f] != kNone) rig.panel.show(images[std::size_t(show[f])], rig.nearest);
+            rig.presenter.render(passes, &frames[f]);
         }
     }
     EXPECT_EQ(messages->load(), 0u);
@@ -239,19 +244,13 @@ TEST(ImagePanel, ShowsWhatAComputePassOfTheSameFrameWrote)
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     io::RgbaImage scene_only, frames[2 * gpu::kFramesInFlight];
     {
-        gpu::Context ctx(test::lavapipe_options());
-        messages = ctx.validation_counter();
-        gpu::CommandPool commands(ctx);
-        gpu::OffscreenPresenter presenter(commands, kTarget);
-        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        scene_pass.set_view(scene.frame_view());
-        ImagePanelPass panel(ctx, presenter.format(), kRect);
-        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
-        PatternPass pattern(ctx, panel, nearest);
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
+        PatternPass pattern(rig.ctx, rig.panel, rig.nearest);
 
-        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);  // slot 0
-        const gpu::FramePasses passes{&pattern, &scene_pass, &panel};
-        for (auto& f : frames) presenter.render(passes, &f);  // slots 1, 0, 1, 0
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);  // slot 0
+        const gpu::FramePasses passes{&pattern, &rig.scene_pass, &rig.panel};
+        for (auto& f : frames) rig.presenter.render(passes, &f);  // slots 1, 0, 1, 0
     }
     EXPECT_EQ(messages->load(), 0u);
 
