@@ -19,8 +19,8 @@ struct RenderFixture {
 
 void render_frame(benchmark::State& state, RenderFixture& f, std::uint32_t width, std::uint32_t height, bool readback)
 {
-    gpu::OffscreenPresenter presenter(f.ctx, {width, height});
-    gpu::CommandPool commands(f.ctx);
+    gpu::CommandPool commands(f.ctx);  // this thread's
+    gpu::OffscreenPresenter presenter(commands, {width, height});
     render::ScenePass scene_pass(f.ctx, commands, presenter.format(), f.scene.meshes());
     scene_pass.set_view(f.scene.frame_view());
     const gpu::FramePasses passes{&scene_pass};

@@ -1,5 +1,5 @@
 // Bindings of the mesh pipeline, included by shaders/mesh.vert, shaders/mesh.frag and the C++
-// renderer, so the two sides cannot disagree on a layout. std140/std430 agree for these members.
+// scene pass, so the two sides cannot disagree on a layout. std140/std430 agree for these members.
 #ifndef ECHOSIM_MESH_BINDINGS_H
 #define ECHOSIM_MESH_BINDINGS_H
 

@@ -56,8 +56,8 @@ int run_window(const RunArgs& args)
         // the tissue runs in its own thread at 1 kHz; the window sends the probe and draws the
         // latest surface the physics published
         DefaultScene scene({.clock = session::Clock::real_time});
-        gpu::WindowPresenter presenter(ctx, window);
         gpu::CommandPool commands(ctx);  // this (the main) thread's
+        gpu::WindowPresenter presenter(commands, window);
         render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
         const gpu::FramePasses passes{&scene_pass};
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "

@@ -14,8 +14,8 @@ HeadlessFrame render_headless(const gpu::ContextOptions& options, const render::
         gpu::Context ctx(options);
         messages = ctx.validation_counter();
         frame.device = ctx.device_name();
-        gpu::OffscreenPresenter presenter(ctx, {width, height});
-        gpu::CommandPool commands(ctx);
+        gpu::CommandPool commands(ctx);  // this thread's
+        gpu::OffscreenPresenter presenter(commands, {width, height});
         render::ScenePass scene_pass(ctx, commands, presenter.format(), meshes);
         scene_pass.set_view(view);
         presenter.render({&scene_pass}, &frame.image);

@@ -1,4 +1,4 @@
-// One headless frame, end to end: context, renderer, offscreen presenter, readback. Used by
+// One headless frame, end to end: context, the scene pass, offscreen presenter, readback. Used by
 // `echosim render`, the render tests and the benchmarks.
 #pragma once
 

@@ -1,5 +1,7 @@
 #include "gpu/command_pool.hpp"
 
+#include <span>
+
 #include "gpu/vk_error.hpp"
 
 namespace echosim::gpu {
@@ -39,6 +41,8 @@ VkCommandBuffer CommandPool::allocate()
     return cmd;
 }
 
+void CommandPool::free(VkCommandBuffer cmd) { vkFreeCommandBuffers(ctx_.device(), pool_, 1, &cmd); }
+
 void CommandPool::submit_and_wait(const std::function<void(VkCommandBuffer)>& record)
 {
     const VkDevice dev = ctx_.device();
@@ -53,7 +57,7 @@ void CommandPool::submit_and_wait(const std::function<void(VkCommandBuffer)>& re
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &once_;
-    check(vkQueueSubmit(ctx_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+    ctx_.submit(std::span(&submit, 1), fence_);
     check(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
 }
 

@@ -12,7 +12,8 @@ namespace {
 std::uint32_t groups_for(std::uint32_t items, std::uint32_t group)
 {
     if (group == 0) throw std::invalid_argument("a workgroup of size 0");
-    return (items + group - 1) / group;
+    // not (items + group - 1) / group: that wraps for items near UINT32_MAX
+    return items / group + (items % group != 0 ? 1u : 0u);
 }
 
 }  // namespace
@@ -57,7 +58,13 @@ ComputeKernel::ComputeKernel(const Context& ctx, std::span<const std::uint32_t> 
     }
 }
 
-ComputeKernel::~ComputeKernel() { destroy(); }
+ComputeKernel::~ComputeKernel()
+{
+    // frames in flight may still dispatch it (gpu/frame.hpp, "Lifetime"); the descriptor sets go
+    // after this, with the member that holds them
+    ctx_.wait_idle();
+    destroy();
+}
 
 void ComputeKernel::destroy()
 {

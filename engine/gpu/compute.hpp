@@ -5,7 +5,11 @@
 //
 // Frame slots: a kernel holds one descriptor set per frame slot (kFramesInFlight), so the frame
 // being recorded can point its bindings at its own resources while the GPU still runs the other
-// slot's dispatch. Bind a slot only when the GPU is done with that slot's last dispatch.
+// slot's dispatch. Bind a slot only when the GPU is done with that slot's last dispatch: at set-up,
+// or from inside the record() of the pass that dispatches it, for that frame's slot (frame.hpp).
+//
+// Lifetime: the destructor waits for the device (Context::wait_idle) before it destroys the
+// pipeline and the descriptor sets, which frames in flight may still use (frame.hpp).
 #pragma once
 
 #include <cstdint>
@@ -45,7 +49,9 @@ public:
     ComputeKernel& operator=(const ComputeKernel&) = delete;
 
     // Points slot `slot`'s bindings at these resources (binding i = resources[i], of the declared
-    // kind); set-up work: throws on a wrong slot, count or kind.
+    // kind); throws on a wrong slot, count or kind. At set-up, or from the record() of the pass
+    // that dispatches the kernel, for the slot being recorded (SlotDescriptors::bind). A kernel
+    // with no bindings needs no bind.
     void bind(int slot, std::span<const Binding> resources) { descriptors_.bind(slot, resources); }
     void bind(int slot, std::initializer_list<Binding> resources) { bind(slot, std::span(resources.begin(), resources.size())); }
     // Records a dispatch of `groups` workgroups with slot `slot`'s bindings into `cmd`. Barriers

@@ -116,7 +116,7 @@ Context::~Context() { destroy(); }
 void Context::destroy()
 {
     if (device_) {
-        vkDeviceWaitIdle(device_);
+        wait_idle();
         vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
     }
@@ -186,8 +186,8 @@ void Context::create_device(bool for_window)
     queue.queueCount = 1;
     queue.pQueuePriorities = &priority;
 
-    // Vulkan 1.3 core: dynamic rendering and synchronization2 keep the renderer free of render
-    // pass objects, so offscreen targets and swapchain images are drawn by the same code.
+    // Vulkan 1.3 core: dynamic rendering and synchronization2 keep the passes free of render pass
+    // objects, so offscreen targets and swapchain images are drawn by the same code.
     VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     supported.pNext = &v13;
@@ -218,6 +218,28 @@ std::uint32_t Context::find_memory_type(std::uint32_t type_bits, VkMemoryPropert
     for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i)
         if ((type_bits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
     throw std::runtime_error("no Vulkan memory type with the wanted properties on " + device_name_);
+}
+
+void Context::submit(std::span<const VkSubmitInfo> submits, VkFence fence, const char* what) const
+{
+    VkResult result;
+    {
+        const std::lock_guard lock(queue_mutex_);
+        result = vkQueueSubmit(queue_, std::uint32_t(submits.size()), submits.data(), fence);
+    }
+    check(result, what);
+}
+
+VkResult Context::present(const VkPresentInfoKHR& info) const
+{
+    const std::lock_guard lock(queue_mutex_);
+    return vkQueuePresentKHR(queue_, &info);
+}
+
+void Context::wait_idle() const
+{
+    const std::lock_guard lock(queue_mutex_);
+    vkDeviceWaitIdle(device_);
 }
 
 }  // namespace echosim::gpu

@@ -1,6 +1,8 @@
 #include "gpu/descriptors.hpp"
 
+#include <algorithm>
 #include <array>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 
@@ -49,7 +51,11 @@ SlotDescriptors::SlotDescriptors(const Context& ctx, std::span<const BindingKind
         set_info.bindingCount = std::uint32_t(bindings.size());
         set_info.pBindings = bindings.data();
         check(vkCreateDescriptorSetLayout(dev, &set_info, nullptr, &layout_), ("vkCreateDescriptorSetLayout " + owner_).c_str());
-        if (kinds_.empty()) return;  // a kernel with push constants only: nothing to allocate
+        if (kinds_.empty()) {
+            // a kernel with push constants only: nothing to allocate, and every slot ready as it is
+            std::fill(std::begin(bound_), std::end(bound_), true);
+            return;
+        }
 
         std::vector<VkDescriptorPoolSize> sizes;
         for (std::size_t k = 0; k < per_kind.size(); ++k)

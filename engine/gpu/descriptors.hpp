@@ -1,6 +1,9 @@
 // Descriptor bindings of several kinds, and one descriptor set of them per frame slot: what a
 // compute kernel or a graphics pass reads and writes, pointed at the resources of the frame being
 // recorded while the GPU may still run the other slot's frame.
+//
+// Lifetime: destruction waits for nothing; the owner (a pass, a compute kernel) waits for the
+// device first (gpu/frame.hpp, "Lifetime").
 #pragma once
 
 #include <cstdint>
@@ -49,13 +52,15 @@ public:
 
     VkDescriptorSetLayout layout() const { return layout_; }
     VkDescriptorSet set(int slot) const { return sets_[std::size_t(slot)]; }
-    // whether bind() has been called for the slot
+    // whether the slot's set points at resources: bind() was called for it, or there is nothing to bind
     bool bound(int slot) const { return bound_[std::size_t(slot)]; }
     std::size_t size() const { return kinds_.size(); }
 
     // Points slot `slot`'s bindings at these resources (binding i = resources[i], of the declared
-    // kind). Set-up work: throws on a wrong slot, count or kind. Only while the GPU is done with
-    // the slot's last frame.
+    // kind); throws on a wrong slot, count or kind. Only while the GPU is done with the slot's last
+    // frame: at set-up (before any frame), or from inside the owning pass's record() for that very
+    // slot (the presenter has waited for the slot's previous frame, gpu/frame.hpp); never from a
+    // caller outside the frame, which cannot know which slot is idle.
     void bind(int slot, std::span<const Binding> resources);
 
 private:

@@ -20,6 +20,34 @@ TargetUse TargetUse::color_attachment(TargetLoad load)
     return use;
 }
 
+VkImageUsageFlags target_usage_for(VkImageLayout layout)
+{
+    switch (layout) {
+    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case VK_IMAGE_LAYOUT_GENERAL: return VK_IMAGE_USAGE_STORAGE_BIT;
+    case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL: return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL: return VK_IMAGE_USAGE_SAMPLED_BIT;
+    default: return 0;
+    }
+}
+
+namespace {
+
+const char* usage_name(VkImageUsageFlags usage)
+{
+    switch (usage) {
+    case VK_IMAGE_USAGE_TRANSFER_DST_BIT: return "TRANSFER_DST";
+    case VK_IMAGE_USAGE_TRANSFER_SRC_BIT: return "TRANSFER_SRC";
+    case VK_IMAGE_USAGE_STORAGE_BIT: return "STORAGE";
+    case VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT: return "COLOR_ATTACHMENT";
+    case VK_IMAGE_USAGE_SAMPLED_BIT: return "SAMPLED";
+    default: return "?";
+    }
+}
+
+}  // namespace
+
 FramePasses::FramePasses(std::initializer_list<FramePass*> passes) : FramePasses(std::span(passes.begin(), passes.size())) {}
 
 FramePasses::FramePasses(std::span<FramePass* const> passes)
@@ -45,6 +73,15 @@ FramePasses::FramePasses(std::span<FramePass* const> passes)
 void FramePasses::record(VkCommandBuffer cmd, int slot, const FrameTarget& target, const TargetState& initial,
                          const TargetState& final) const
 {
+    // a wiring error (a pass on a presenter whose target cannot serve it): refused before any
+    // command is recorded, rather than left to the validation layer
+    for (const Entry& e : passes_) {
+        const VkImageUsageFlags needed = target_usage_for(e.use.state.layout);
+        if (e.use.touches_target() && (target.usage & needed) != needed)
+            throw std::logic_error(std::string("frame pass '") + e.pass->name() + "' needs the target with usage " +
+                                   usage_name(needed) + ", which this target lacks");
+    }
+
     const PassContext frame{cmd, slot, target};
     TargetState current = initial;
     for (const Entry& e : passes_) {

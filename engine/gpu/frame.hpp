@@ -16,11 +16,25 @@
 // barrier; the resources it shares with later passes are its own to synchronise (it leaves them in
 // the layout, stage and access its readers expect, documented with the pass).
 //
+// The target's usage: each pass's layout needs a usage of the target (a transfer destination, a
+// storage image, a colour attachment, a sampled image); a presenter may not offer all of them (a
+// swapchain without TRANSFER_DST), and recording a frame for a target without what a pass needs is
+// a wiring error, refused before anything is recorded.
+//
 // Frame slots: up to kFramesInFlight frames may be in flight. A pass keeps per-slot copies of what
 // it rewrites every frame (uniforms, vertices, descriptor sets); when it records slot s, the GPU is
-// done with the previous frame of slot s (the presenter waited for its fence).
+// done with the previous frame of slot s (the presenter waited for its fence), and only then: so a
+// pass re-points slot s's descriptor sets from inside its record() for slot s (or at set-up, before
+// any frame), never from outside, where the caller cannot know which slot is idle.
 //
-// Threading: the passes of a frame are recorded on the thread that calls the presenter.
+// Lifetime: frames in flight may still use a pass's GPU objects (pipelines, descriptor sets,
+// per-slot buffers and images, compute kernels) after its last record(). So every pass, and every
+// GPU object a pass owns that waits for nothing itself (ComputeKernel does; SlotDescriptors and the
+// resources of resources.hpp do not: their owners do), waits for the device (Context::wait_idle)
+// before it is destroyed. Destruction is tear-down work, never per frame.
+//
+// Threading: the passes of a frame are recorded on the thread that calls the presenter, into the
+// command buffers of that thread's pool; the frame is submitted through the Context.
 #pragma once
 
 #include <initializer_list>
@@ -40,7 +54,8 @@ struct FrameTarget {
     VkExtent2D extent{};
     VkFormat format = VK_FORMAT_UNDEFINED;
     // always a colour attachment; a transfer destination too (clears, blits) where the presenter
-    // can offer it: offscreen always, a swapchain where the surface allows
+    // can offer it: offscreen always, a swapchain where the surface allows. FramePasses::record
+    // checks each pass's layout against it.
     VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
 };
 
@@ -70,6 +85,11 @@ struct TargetUse {
         return load == TargetLoad::clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     }
 };
+
+// The usage an image needs to be used in `layout` by a pass (TRANSFER_DST_OPTIMAL: TRANSFER_DST,
+// GENERAL: STORAGE, COLOR_ATTACHMENT_OPTIMAL: COLOR_ATTACHMENT, SHADER_READ_ONLY_OPTIMAL: SAMPLED,
+// TRANSFER_SRC_OPTIMAL: TRANSFER_SRC); 0 for a layout that asks for no particular one.
+VkImageUsageFlags target_usage_for(VkImageLayout layout);
 
 // What a pass records with: the frame's command buffer, its slot in [0, kFramesInFlight), and the
 // target, already in the layout the pass declared.
@@ -102,6 +122,8 @@ public:
     // Records every pass into `cmd` for frame slot `slot`, with the barriers between them: the
     // target starts in `initial` (the presenter's: its layout, and the stage its wait or last use
     // happened at) and is left in `final` (layout, and the stage and access of its next user).
+    // Throws std::logic_error naming the pass and the usage, before recording anything, when a
+    // pass needs the target in a layout its usage does not allow (target_usage_for).
     void record(VkCommandBuffer cmd, int slot, const FrameTarget& target, const TargetState& initial,
                 const TargetState& final) const;
 

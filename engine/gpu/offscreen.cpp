@@ -21,15 +21,15 @@ VkExtent2D checked_extent(const Context& ctx, VkExtent2D extent)
 
 }  // namespace
 
-OffscreenPresenter::OffscreenPresenter(const Context& ctx, VkExtent2D extent)
-    : ctx_(ctx),
-      color_(ctx, checked_extent(ctx, extent), kFormat, kUsage, VK_IMAGE_ASPECT_COLOR_BIT),
-      readback_(ctx, VkDeviceSize(extent.width) * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible),
-      commands_(ctx)
+OffscreenPresenter::OffscreenPresenter(CommandPool& commands, VkExtent2D extent)
+    : ctx_(commands.context()),
+      commands_(commands),
+      color_(ctx_, checked_extent(ctx_, extent), kFormat, kUsage, VK_IMAGE_ASPECT_COLOR_BIT),
+      readback_(ctx_, VkDeviceSize(extent.width) * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible)
 {
 }
 
-OffscreenPresenter::~OffscreenPresenter() { vkQueueWaitIdle(ctx_.queue()); }
+OffscreenPresenter::~OffscreenPresenter() { ctx_.wait_idle(); }
 
 void OffscreenPresenter::render(const FramePasses& passes, io::RgbaImage* out)
 {

@@ -4,6 +4,9 @@
 //
 // Each frame is waited for, so any frame slot is free when the next one starts; the presenter
 // still takes the slots in turn, as the window does, so per-slot resources are exercised headless.
+//
+// Threading: the presenter records and submits through the command pool it is given, the calling
+// thread's one pool (command_pool.hpp), so it renders on that thread only.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -22,7 +25,8 @@ public:
     static constexpr VkImageUsageFlags kUsage =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
-    OffscreenPresenter(const Context& ctx, VkExtent2D extent);
+    // `commands`: the calling thread's pool (on its context); it must outlive the presenter.
+    OffscreenPresenter(CommandPool& commands, VkExtent2D extent);
     ~OffscreenPresenter();
     OffscreenPresenter(const OffscreenPresenter&) = delete;
     OffscreenPresenter& operator=(const OffscreenPresenter&) = delete;
@@ -38,9 +42,9 @@ private:
     void record(VkCommandBuffer cmd, const FramePasses& passes, bool readback);
 
     const Context& ctx_;
+    CommandPool& commands_;
     Image color_;
     Buffer readback_;
-    CommandPool commands_;
     int slot_ = 0;
 };
 

@@ -1,7 +1,8 @@
 // The second Vulkan layer: buffers, images (2-D and 3-D), samplers and uploads through staging on
 // top of a Context. Each resource owns its memory (one allocation per resource: echosim holds a few
 // dozen, far below maxMemoryAllocationCount) and is move-only; destruction waits for nothing, so the
-// owner must make sure the GPU is done with it (the presenters do, by fences).
+// owner must make sure the GPU is done with it (the presenters do, by fences; the passes wait for
+// the device before theirs go: gpu/frame.hpp, "Lifetime").
 #pragma once
 
 #include <cstddef>

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <span>
 #include <stdexcept>
 
 #define GLFW_INCLUDE_VULKAN
@@ -94,51 +95,61 @@ VkExtent2D Window::framebuffer_extent() const
     return {std::uint32_t(std::max(w, 0)), std::uint32_t(std::max(h, 0))};
 }
 
-WindowPresenter::WindowPresenter(const Context& ctx, Window& window) : ctx_(ctx), window_(window), commands_(ctx)
+WindowPresenter::WindowPresenter(CommandPool& commands, Window& window)
+    : ctx_(commands.context()), commands_(commands), window_(window)
 {
+    const Context& ctx = ctx_;
     check(glfwCreateWindowSurface(ctx.instance(), window.handle(), nullptr, &surface_), "glfwCreateWindowSurface");
-    VkBool32 supported = VK_FALSE;
-    vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.queue_family(), surface_, &supported);
-    if (!supported) {
-        vkDestroySurfaceKHR(ctx.instance(), surface_, nullptr);
-        throw std::runtime_error("the Vulkan queue of " + ctx.device_name() + " cannot present to this window");
-    }
+    try {
+        VkBool32 supported = VK_FALSE;
+        vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.queue_family(), surface_, &supported);
+        if (!supported) throw std::runtime_error("the Vulkan queue of " + ctx.device_name() + " cannot present to this window");
 
-    // prefer an sRGB swapchain so the shaders write linear colour, as offscreen
-    std::uint32_t n = 0;
-    vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physical_device(), surface_, &n, nullptr);
-    std::vector<VkSurfaceFormatKHR> formats(n);
-    vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physical_device(), surface_, &n, formats.data());
-    if (formats.empty()) throw std::runtime_error("the window surface offers no formats");
-    format_ = formats[0].format;
-    for (const auto& f : formats)
-        if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
-            f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
-            format_ = f.format;
+        // prefer an sRGB swapchain so the shaders write linear colour, as offscreen
+        std::uint32_t n = 0;
+        vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physical_device(), surface_, &n, nullptr);
+        std::vector<VkSurfaceFormatKHR> formats(n);
+        vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physical_device(), surface_, &n, formats.data());
+        if (formats.empty()) throw std::runtime_error("the window surface offers no formats");
+        format_ = formats[0].format;
+        for (const auto& f : formats)
+            if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+                f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
+                format_ = f.format;
 
-    const VkDevice dev = ctx.device();
-    for (Frame& f : frames_) {
-        f.cmd = commands_.allocate();
-        VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        fence.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-        check(vkCreateFence(dev, &fence, nullptr, &f.in_flight), "vkCreateFence");
-        VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        check(vkCreateSemaphore(dev, &sem, nullptr, &f.image_acquired), "vkCreateSemaphore");
+        const VkDevice dev = ctx.device();
+        for (Frame& f : frames_) {
+            f.cmd = commands_.allocate();
+            VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+            fence.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+            check(vkCreateFence(dev, &fence, nullptr, &f.in_flight), "vkCreateFence");
+            VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+            check(vkCreateSemaphore(dev, &sem, nullptr, &f.image_acquired), "vkCreateSemaphore");
+        }
+        create_swapchain();
+    } catch (...) {
+        destroy();
+        throw;
     }
-    create_swapchain();
 }
 
-WindowPresenter::~WindowPresenter()
+WindowPresenter::~WindowPresenter() { destroy(); }
+
+void WindowPresenter::destroy()
 {
     const VkDevice dev = ctx_.device();
-    vkDeviceWaitIdle(dev);
+    ctx_.wait_idle();
     destroy_swapchain_views();
     if (swapchain_) vkDestroySwapchainKHR(dev, swapchain_, nullptr);
+    swapchain_ = VK_NULL_HANDLE;
     for (Frame& f : frames_) {
+        if (f.cmd) commands_.free(f.cmd);
         if (f.in_flight) vkDestroyFence(dev, f.in_flight, nullptr);
         if (f.image_acquired) vkDestroySemaphore(dev, f.image_acquired, nullptr);
+        f = Frame{};
     }
-    vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
+    if (surface_) vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
+    surface_ = VK_NULL_HANDLE;
 }
 
 void WindowPresenter::destroy_swapchain_views()
@@ -154,7 +165,7 @@ void WindowPresenter::destroy_swapchain_views()
 void WindowPresenter::create_swapchain()
 {
     const VkDevice dev = ctx_.device();
-    vkDeviceWaitIdle(dev);
+    ctx_.wait_idle();
     VkSurfaceCapabilitiesKHR caps;
     check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx_.physical_device(), surface_, &caps),
           "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
@@ -255,7 +266,7 @@ bool WindowPresenter::draw(const FramePasses& passes)
     submit.pCommandBuffers = &f.cmd;
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &render_done_[index];
-    check(vkQueueSubmit(ctx_.queue(), 1, &submit, f.in_flight), "vkQueueSubmit (frame)");
+    ctx_.submit(std::span(&submit, 1), f.in_flight, "vkQueueSubmit (frame)");
 
     VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
     present.waitSemaphoreCount = 1;
@@ -263,7 +274,7 @@ bool WindowPresenter::draw(const FramePasses& passes)
     present.swapchainCount = 1;
     present.pSwapchains = &swapchain_;
     present.pImageIndices = &index;
-    const VkResult presented = vkQueuePresentKHR(ctx_.queue(), &present);
+    const VkResult presented = ctx_.present(present);
     frame_ = (frame_ + 1) % kFramesInFlight;
     if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
         create_swapchain();

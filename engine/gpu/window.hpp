@@ -2,7 +2,9 @@
 // (a zero-sized framebuffer: nothing is drawn until the window comes back) and switches between
 // windowed and fullscreen at any size the monitor offers, up to 3840x2160 and beyond.
 //
-// Threading: GLFW requires the window to be made, polled and destroyed on the main thread.
+// Threading: GLFW requires the window to be made, polled and destroyed on the main thread. The
+// presenter records its frames into command buffers of the pool it is given, the drawing thread's
+// one pool (command_pool.hpp); it submits and presents through the Context.
 #pragma once
 
 #include <array>
@@ -58,7 +60,10 @@ private:
 
 class WindowPresenter {
 public:
-    WindowPresenter(const Context& ctx, Window& window);
+    // `commands`: the drawing thread's pool (on a context made for this window, see
+    // Window::can_present); it and the window must outlive the presenter. Throws, having released
+    // what it made, when the surface or the swapchain cannot be made.
+    WindowPresenter(CommandPool& commands, Window& window);
     ~WindowPresenter();
     WindowPresenter(const WindowPresenter&) = delete;
     WindowPresenter& operator=(const WindowPresenter&) = delete;
@@ -80,8 +85,10 @@ private:
 
     void create_swapchain();
     void destroy_swapchain_views();
+    void destroy();
 
     const Context& ctx_;
+    CommandPool& commands_;
     Window& window_;
     VkSurfaceKHR surface_ = VK_NULL_HANDLE;
     VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
@@ -91,7 +98,6 @@ private:
     std::vector<VkImage> images_;
     std::vector<VkImageView> views_;
     std::vector<VkSemaphore> render_done_;  // one per swapchain image: present waits on it
-    CommandPool commands_;
     std::array<Frame, kFramesInFlight> frames_{};
     int frame_ = 0;
     std::uint32_t generation_ = 0;

@@ -15,11 +15,11 @@ constexpr int kSlot = 0;  // run() waits for every dispatch, so one slot serves
 }  // namespace
 
 LogCompressGpu::LogCompressGpu(const gpu::Context& ctx, std::uint32_t max_pixels)
-    : kernel_(ctx, kernels::log_compress_comp, "log_compress.comp",
-              {gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer}, sizeof(kernels::LogCompressParams)),
-      envelope_(ctx, VkDeviceSize(max_pixels) * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::host_visible),
+    : envelope_(ctx, VkDeviceSize(max_pixels) * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::host_visible),
       image_(ctx, VkDeviceSize(max_pixels) * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::host_visible),
-      max_pixels_(max_pixels)
+      max_pixels_(max_pixels),
+      kernel_(ctx, kernels::log_compress_comp, "log_compress.comp",
+              {gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer}, sizeof(kernels::LogCompressParams))
 {
     kernel_.bind(kSlot, {gpu::Binding::storage(envelope_), gpu::Binding::storage(image_)});
 }

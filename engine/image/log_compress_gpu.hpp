@@ -24,10 +24,12 @@ public:
     std::vector<std::uint32_t> run(gpu::CommandPool& pool, std::span<const float> envelope, kernels::LogCompressParams params);
 
 private:
-    gpu::ComputeKernel kernel_;
     gpu::Buffer envelope_;
     gpu::Buffer image_;
     std::uint32_t max_pixels_;
+    // last, so destroyed first: it waits for the device before the buffers it binds go
+    // (gpu/frame.hpp, "Lifetime")
+    gpu::ComputeKernel kernel_;
 };
 
 }  // namespace echosim::image

@@ -1,8 +1,9 @@
 // A lock-free triple buffer: one writer publishes whole values, one reader takes the latest one.
 // Neither waits for the other: the writer fills its private slot and swaps it with the shared
 // "latest" slot; the reader swaps that with its own when something new was published. It is the
-// hand-off between the physics thread and its readers (the renderer, later the haptic thread): the
-// values are allocated up front (the constructor's prototype) so the hot paths never allocate.
+// hand-off between the physics thread and its readers (the session on the drawing thread, later
+// the haptic thread): the values are allocated up front (the constructor's prototype) so the hot
+// paths never allocate.
 #pragma once
 
 #include <atomic>

@@ -58,30 +58,43 @@ ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, P
     }
 }
 
-ImagePanelPass::~ImagePanelPass() { destroy(); }
+ImagePanelPass::~ImagePanelPass()
+{
+    // frames in flight may still use the pipeline and the descriptor sets (gpu/frame.hpp,
+    // "Lifetime"); the sets go after this, with their member
+    ctx_.wait_idle();
+    destroy();
+}
 
 void ImagePanelPass::destroy()
 {
     const VkDevice dev = ctx_.device();
-    // a presenter may still have frames in flight that use the pipeline
-    vkDeviceWaitIdle(dev);
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
     pipeline_ = VK_NULL_HANDLE;
     pipeline_layout_ = VK_NULL_HANDLE;
 }
 
-void ImagePanelPass::show(int slot, const gpu::Image& image, const gpu::Sampler& sampler)
+void ImagePanelPass::show(const gpu::Image& image, const gpu::Sampler& sampler)
 {
     if (image.type() != VK_IMAGE_TYPE_2D) throw std::invalid_argument("image panel: shows 2-D images only");
-    const gpu::Binding binding = gpu::Binding::sampled(image, sampler);
-    descriptors_.bind(slot, std::span(&binding, 1));
+    image_ = &image;
+    sampler_ = &sampler;
 }
 
 void ImagePanelPass::record(const gpu::PassContext& frame)
 {
     const VkRect2D area = panel_pixels(rect_, frame.target.extent);
-    if (!descriptors_.bound(frame.slot) || area.extent.width == 0 || area.extent.height == 0) return;
+    if (!image_ || area.extent.width == 0 || area.extent.height == 0) return;
+
+    // the presenter has waited for this slot's previous frame: its set may be re-pointed now
+    const Shown shown{image_->view(), sampler_->handle()};
+    Shown& bound = bound_[std::size_t(frame.slot)];
+    if (bound != shown) {
+        const gpu::Binding binding = gpu::Binding::sampled(*image_, *sampler_);
+        descriptors_.bind(frame.slot, std::span(&binding, 1));
+        bound = shown;
+    }
 
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     color.imageView = frame.target.view;

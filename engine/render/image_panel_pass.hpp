@@ -9,8 +9,16 @@
 // puts its own barrier after its dispatch).
 //
 // Frame slots: each slot has its own image binding, so the image pipeline can fill one slot's image
-// while the other slot's frame is on screen. A slot shown no image draws nothing.
+// while the other slot's frame is on screen. show() only notes what the next frames show; record()
+// for slot s (called once the presenter has waited for slot s's previous frame) re-points slot s's
+// binding when it shows something else, so a window loop may call show() at any frame. Nothing
+// shown yet: the panel draws nothing.
+//
+// Lifetime: the destructor waits for the device before it destroys what frames in flight may use
+// (gpu/frame.hpp).
 #pragma once
+
+#include <array>
 
 #include <vulkan/vulkan.h>
 
@@ -40,19 +48,31 @@ public:
 
     void set_rect(const PanelRect& rect) { rect_ = rect; }
     const PanelRect& rect() const { return rect_; }
-    // Shows `image` through `sampler` in the frames of slot `slot` (both must outlive their use);
-    // only while the GPU is done with the slot's last frame.
-    void show(int slot, const gpu::Image& image, const gpu::Sampler& sampler);
+    // Shows `image` (2-D, else std::invalid_argument) through `sampler` in the frames recorded from
+    // now on; both must outlive those frames. Any time, between frames or from a pass recorded
+    // before the panel in the same frame: no GPU object is touched here.
+    void show(const gpu::Image& image, const gpu::Sampler& sampler);
 
     const char* name() const override { return "image panel"; }
     gpu::TargetUse target_use() const override { return gpu::TargetUse::color_attachment(gpu::TargetLoad::load); }
     void record(const gpu::PassContext& frame) override;
 
 private:
+    // what a slot's descriptor set points at (the handles, read when the slot is recorded, so an
+    // image made anew in the same object is seen)
+    struct Shown {
+        VkImageView view = VK_NULL_HANDLE;
+        VkSampler sampler = VK_NULL_HANDLE;
+        bool operator==(const Shown&) const = default;
+    };
+
     void destroy();
     const gpu::Context& ctx_;
     VkFormat color_format_;
     PanelRect rect_;
+    const gpu::Image* image_ = nullptr;  // what show() was last given
+    const gpu::Sampler* sampler_ = nullptr;
+    std::array<Shown, gpu::kFramesInFlight> bound_{};  // per slot
     gpu::SlotDescriptors descriptors_;
     VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;

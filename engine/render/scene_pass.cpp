@@ -24,6 +24,9 @@ namespace {
 using mesh_bindings::DrawPush;
 using mesh_bindings::FrameUniforms;
 
+constexpr gpu::BindingKind kBindings[] = {gpu::BindingKind::uniform_buffer};  // MESH_FRAME_BINDING
+static_assert(MESH_FRAME_SET == 0 && MESH_FRAME_BINDING == 0, "the mesh's one binding is binding 0 of set 0");
+
 template <class T>
 std::span<const std::byte> bytes_of(std::span<const T> s)
 {
@@ -33,9 +36,9 @@ std::span<const std::byte> bytes_of(std::span<const T> s)
 }  // namespace
 
 ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkFormat color_format, const SceneMeshes& meshes)
-    : ctx_(ctx), color_format_(color_format)
+    : ctx_(ctx), color_format_(color_format),
+      descriptors_(ctx, kBindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "scene")
 {
-    const VkDevice dev = ctx.device();
     try {
         // static geometry goes to device-local memory once
         static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -48,41 +51,15 @@ ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkForma
         patch_index_count_ = std::uint32_t(meshes.patch_rest.indices.size());
         patch_vertex_count_ = meshes.patch_rest.vertices.size();
 
-        VkDescriptorSetLayoutBinding binding{};
-        binding.binding = MESH_FRAME_BINDING;
-        binding.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        binding.descriptorCount = 1;
-        binding.stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-        VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        set_info.bindingCount = 1;
-        set_info.pBindings = &binding;
-        check(vkCreateDescriptorSetLayout(dev, &set_info, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
-
-        VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight};
-        VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        pool_info.maxSets = kFramesInFlight;
-        pool_info.poolSizeCount = 1;
-        pool_info.pPoolSizes = &pool_size;
-        check(vkCreateDescriptorPool(dev, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
-
-        for (Slot& slot : slots_) {
+        for (int i = 0; i < kFramesInFlight; ++i) {
+            Slot& slot = slots_[std::size_t(i)];
             slot.uniforms = gpu::Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
             slot.patch_vertices = gpu::Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
                                               VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
             slot.patch_vertices.write(bytes_of(std::span(meshes.patch_rest.vertices)));
-            VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-            alloc.descriptorPool = descriptor_pool_;
-            alloc.descriptorSetCount = 1;
-            alloc.pSetLayouts = &set_layout_;
-            check(vkAllocateDescriptorSets(dev, &alloc, &slot.descriptors), "vkAllocateDescriptorSets");
-            VkDescriptorBufferInfo buffer_info{slot.uniforms.handle(), 0, sizeof(FrameUniforms)};
-            VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            write.dstSet = slot.descriptors;
-            write.dstBinding = MESH_FRAME_BINDING;
-            write.descriptorCount = 1;
-            write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-            write.pBufferInfo = &buffer_info;
-            vkUpdateDescriptorSets(dev, 1, &write, 0, nullptr);
+            // each slot's set points at its own uniforms for good: bound once, at set-up
+            const gpu::Binding uniforms = gpu::Binding::uniform(slot.uniforms);
+            descriptors_.bind(i, std::span(&uniforms, 1));
         }
         create_pipeline();
     } catch (...) {
@@ -91,21 +68,21 @@ ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkForma
     }
 }
 
-ScenePass::~ScenePass() { destroy(); }
+ScenePass::~ScenePass()
+{
+    // frames in flight may still use the pipeline, the descriptor sets and the slots' buffers
+    // (gpu/frame.hpp, "Lifetime"); the members go after this
+    ctx_.wait_idle();
+    destroy();
+}
 
 void ScenePass::destroy()
 {
     const VkDevice dev = ctx_.device();
-    // a presenter may still have frames in flight that use these objects
-    vkDeviceWaitIdle(dev);
     if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
     if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
-    if (descriptor_pool_) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);
-    if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
     pipeline_ = VK_NULL_HANDLE;
     pipeline_layout_ = VK_NULL_HANDLE;
-    descriptor_pool_ = VK_NULL_HANDLE;
-    set_layout_ = VK_NULL_HANDLE;
 }
 
 void ScenePass::create_pipeline()
@@ -114,7 +91,8 @@ void ScenePass::create_pipeline()
     VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)};
     VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layout_info.setLayoutCount = 1;
-    layout_info.pSetLayouts = &set_layout_;
+    const VkDescriptorSetLayout set_layout = descriptors_.layout();
+    layout_info.pSetLayouts = &set_layout;
     layout_info.pushConstantRangeCount = 1;
     layout_info.pPushConstantRanges = &push;
     check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout");
@@ -218,7 +196,8 @@ void ScenePass::record(const gpu::PassContext& pass)
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, MESH_FRAME_SET, 1, &slot.descriptors, 0, nullptr);
+    const VkDescriptorSet set = descriptors_.set(pass.slot);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, MESH_FRAME_SET, 1, &set, 0, nullptr);
 
     const glm::mat4 identity(1.0f);
     draw(cmd, static_mesh_.vertices.handle(), static_mesh_.indices.handle(), static_mesh_.index_count, identity,

@@ -3,8 +3,12 @@
 // target, so it comes first among the passes that draw (gpu/frame.hpp); views and overlays load
 // what it leaves. Presenters own the targets and the frame pacing; the pass only records.
 //
-// Frame slots: per slot the pass keeps its own uniform buffer, patch vertex buffer and depth image
-// (the presenter guarantees the GPU is done with a slot before it is recorded again).
+// Frame slots: per slot the pass keeps its own uniform buffer (and descriptor set pointing at it),
+// patch vertex buffer and depth image (the presenter guarantees the GPU is done with a slot before
+// it is recorded again).
+//
+// Lifetime: the destructor waits for the device before it destroys what frames in flight may use
+// (gpu/frame.hpp).
 #pragma once
 
 #include <array>
@@ -16,6 +20,7 @@
 
 #include "gpu/command_pool.hpp"
 #include "gpu/context.hpp"
+#include "gpu/descriptors.hpp"
 #include "gpu/frame.hpp"
 #include "gpu/resources.hpp"
 #include "scene/camera.hpp"
@@ -64,7 +69,6 @@ private:
         gpu::Buffer uniforms;
         gpu::Buffer patch_vertices;
         gpu::Image depth;
-        VkDescriptorSet descriptors = VK_NULL_HANDLE;
     };
 
     void create_pipeline();
@@ -75,8 +79,7 @@ private:
     const gpu::Context& ctx_;
     VkFormat color_format_;
     VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    gpu::SlotDescriptors descriptors_;  // per slot: the slot's uniforms
     VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     GpuMesh static_mesh_, probe_;

@@ -26,7 +26,7 @@ struct LegOptions {
 struct ExamPatch {
     int rows = 0;
     int cols = 0;
-    Mesh rest;          // rest shape; the renderer draws a copy whose positions change
+    Mesh rest;          // rest shape; the scene pass draws a copy whose positions change
     float t0 = 0, t1 = 0;          // extent along the exam limb (tube parameter)
     float theta0 = 0, theta1 = 0;  // extent around it [rad]
 };

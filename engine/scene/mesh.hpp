@@ -1,4 +1,4 @@
-// Triangle meshes as the renderer takes them: positions in world millimetres (LPS), unit normals,
+// Triangle meshes as the scene pass (render/scene_pass) takes them: positions in world millimetres (LPS), unit normals,
 // linear-RGB colours. Builders in this folder make the leg, the exam patch and the probe.
 #pragma once
 
@@ -34,7 +34,7 @@ Bounds bounds(const Mesh& mesh);
 void recompute_normals(Mesh& mesh);
 
 // Makes every triangle wind counter-clockwise seen from the side its vertex normals point to, so
-// the renderer can cull back faces (the builders produce outward normals; winding is fixed here).
+// the scene pass can cull back faces (the builders produce outward normals; winding is fixed here).
 void orient_to_normals(Mesh& mesh);
 
 // An axis-aligned box with flat faces (the examination table).

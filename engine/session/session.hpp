@@ -58,7 +58,7 @@ struct ProbePlacement {
     Pose face() const { return pressed_along_beam(rest, press_mm); }
 };
 
-// What the simulation looks like now, for the renderer and the user.
+// What the simulation looks like now, for the scene pass (through the frame view) and the user.
 struct SessionView {
     const std::vector<scene::Vertex>* patch = nullptr;  // the render patch, deformed by the tissue
     Pose probe;               // where the probe's face is (its commanded pose)

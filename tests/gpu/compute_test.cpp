@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <stdexcept>
 
 #include <glm/vec3.hpp>
 #include <gtest/gtest.h>
@@ -52,6 +53,44 @@ TEST(Groups, CoverEveryItemWithTheFewestGroups)
     EXPECT_EQ(c.x, 3u);
     EXPECT_EQ(c.y, 2u);
     EXPECT_EQ(c.z, 1u);
+    EXPECT_EQ(Groups::cover(0u, 8u).x, 0u);
+    EXPECT_EQ(Groups::cover(16u, 8u).x, 2u);
+    EXPECT_THROW(Groups::cover(16u, 0u), std::invalid_argument);
+}
+
+TEST(Groups, CoverCountsUpToTheLargestItemCountWithoutWrapping)
+{
+    // items + group - 1 would wrap past UINT32_MAX here and give 0 groups
+    EXPECT_EQ(Groups::cover(UINT32_MAX, 256u).x, 16777216u);  // (2^32 - 1) / 2^8, rounded up
+    EXPECT_EQ(Groups::cover(UINT32_MAX, 1u).x, UINT32_MAX);
+    EXPECT_EQ(Groups::cover(UINT32_MAX, UINT32_MAX).x, 1u);
+    EXPECT_EQ(Groups::cover(UINT32_MAX - 1, UINT32_MAX).x, 1u);
+    const Groups g = Groups::cover(VkExtent3D{UINT32_MAX, UINT32_MAX - 2, 5}, VkExtent3D{64, 3, 2});
+    EXPECT_EQ(g.x, 67108864u);   // 2^26
+    EXPECT_EQ(g.y, 1431655765u); // (2^32 - 3) / 3
+    EXPECT_EQ(g.z, 3u);
+}
+
+TEST(Compute, AKernelWithNoBindingsIsDispatchedWithoutABind)
+{
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        Context ctx(test::lavapipe_options());
+        messages = ctx.validation_counter();
+        CommandPool pool(ctx);
+        ComputeKernel kernel(ctx, test::kernels::push_only_comp, "push_only.comp", std::span<const BindingKind>(),
+                             sizeof(std::uint32_t));
+        const std::uint32_t value = 7;
+        pool.submit_and_wait([&](VkCommandBuffer cmd) {
+            for (int s = 0; s < kFramesInFlight; ++s)
+                EXPECT_NO_THROW(kernel.record(cmd, s, std::as_bytes(std::span(&value, 1)), Groups::cover(3u, 1u)));
+        });
+        // binding nothing is still a bind of the right count; anything more is refused
+        EXPECT_NO_THROW(kernel.bind(0, std::span<const Binding>()));
+        Buffer b(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::host_visible);
+        EXPECT_THROW(kernel.bind(0, {Binding::storage(b)}), std::invalid_argument);
+    }
+    EXPECT_EQ(messages->load(), 0u);
 }
 
 // A small volume of random voxels; the expectations below read it as the sampler should.

@@ -6,6 +6,8 @@
 
 #include <cstring>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -87,6 +89,51 @@ TEST(FramePasses, TheListRefusesWhatCannotWork)
     EXPECT_NO_THROW(FramePasses({&clear, &overlay, &clear}));
 }
 
+// Writes the whole target from a compute shader's place (layout GENERAL: a storage image).
+struct StoragePass final : FramePass {
+    const char* name() const override { return "storage write"; }
+    TargetUse target_use() const override
+    {
+        return {{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT}, TargetLoad::clear};
+    }
+    void record(const PassContext&) override { ADD_FAILURE() << "recorded for a target it cannot use"; }
+};
+
+TEST(FramePasses, ATargetWithoutTheUsageAPassNeedsIsRefusedBeforeRecording)
+{
+    // a swapchain may offer a colour attachment only: a transfer clear or a storage write into it
+    // is a wiring error, named, and nothing is recorded (no command buffer is needed to see it)
+    TransferClearPass clear;
+    StoragePass storage;
+    OverlayPass overlay;
+    WitnessPass witness;
+    FrameTarget target;
+    target.extent = kExtent;
+    target.format = VK_FORMAT_B8G8R8A8_SRGB;
+    target.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    const TargetState initial{VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE};
+    const TargetState final{VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+    const auto refusal = [&](const FramePasses& passes) -> std::string {
+        try {
+            passes.record(VK_NULL_HANDLE, 0, target, initial, final);
+        } catch (const std::logic_error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string no_transfer = refusal(FramePasses{&witness, &clear, &overlay});
+    EXPECT_NE(no_transfer.find("'transfer clear'"), std::string::npos) << no_transfer;
+    EXPECT_NE(no_transfer.find("TRANSFER_DST"), std::string::npos) << no_transfer;
+    EXPECT_TRUE(witness.slots.empty()) << "a pass was recorded before the refusal";
+    const std::string no_storage = refusal(FramePasses{&storage});
+    EXPECT_NE(no_storage.find("'storage write'"), std::string::npos) << no_storage;
+    EXPECT_NE(no_storage.find("STORAGE"), std::string::npos) << no_storage;
+    // the layouts and the usages they need (the offscreen target has them all: the test below)
+    EXPECT_EQ(target_usage_for(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL), VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_DST_BIT));
+    EXPECT_EQ(target_usage_for(VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL), VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT));
+    EXPECT_EQ(target_usage_for(VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL), VkImageUsageFlags(VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT));
+}
+
 TEST(FramePasses, EachPassGetsTheTargetInItsLayoutInOrder)
 {
     TransferClearPass clear;
@@ -97,7 +144,8 @@ TEST(FramePasses, EachPassGetsTheTargetInItsLayoutInOrder)
     {
         Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
-        OffscreenPresenter presenter(ctx, kExtent);
+        CommandPool commands(ctx);
+        OffscreenPresenter presenter(commands, kExtent);
         // transfer destination, then colour attachment, then transfer source for the readback
         const FramePasses passes{&witness, &clear, &overlay};
         for (auto& f : frames) presenter.render(passes, &f);

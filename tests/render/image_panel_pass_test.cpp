@@ -79,37 +79,61 @@ TEST(ImagePanel, CoversItsRectangleOfTheTarget)
     EXPECT_EQ(out.extent.height, 50u);
 }
 
-TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
-{
-    // an image of random display values
-    std::vector<std::uint8_t> bytes(std::size_t(kImage.width) * kImage.height * 4);
-    std::mt19937 rng(5);
-    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = i % 4 == 3 ? 255 : std::uint8_t(rng() % 256);
-    const auto texel = [&](std::uint32_t i, std::uint32_t j) {
+// An image of random display values (opaque), and its texels as the check above reads them.
+struct RandomImage {
+    std::vector<std::uint8_t> bytes;
+    explicit RandomImage(std::uint32_t seed) : bytes(std::size_t(kImage.width) * kImage.height * 4)
+    {
+        std::mt19937 rng(seed);
+        for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = i % 4 == 3 ? 255 : std::uint8_t(rng() % 256);
+    }
+    Texel operator()(std::uint32_t i, std::uint32_t j) const
+    {
         const std::uint8_t* t = &bytes[(std::size_t(j) * kImage.width + i) * 4];
         return Texel{t[0], t[1], t[2], t[3]};
-    };
+    }
+    gpu::Image upload(gpu::CommandPool& commands) const
+    {
+        gpu::Image image(commands.context(), kImage, VK_FORMAT_R8G8B8A8_UNORM,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+        gpu::upload_image(commands, image, std::as_bytes(std::span(bytes)));
+        return image;
+    }
+};
+
+// What every frame here is drawn with: lavapipe with validation, this thread's pool, the offscreen
+// presenter (which alternates the slots), the scene pass, and the panel over it, sampling nearest
+// (the texels as they are). The test reads the validation count after it is gone.
+struct PanelGpu {
+    gpu::Context ctx{test::lavapipe_options()};
+    gpu::CommandPool commands{ctx};
+    gpu::OffscreenPresenter presenter{commands, kTarget};
+    const gpu::Sampler nearest{ctx, gpu::Filter::nearest};
+    ScenePass scene_pass;
+    ImagePanelPass panel{ctx, presenter.format(), kRect};
+
+    explicit PanelGpu(app::DefaultScene& scene) : scene_pass(ctx, commands, presenter.format(), scene.meshes())
+    {
+        scene_pass.set_view(scene.frame_view());
+    }
+};
+
+TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
+{
+    const RandomImage texel(5);
 
     app::DefaultScene scene;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     io::RgbaImage scene_only, frames[gpu::kFramesInFlight];
     {
-        gpu::Context ctx(test::lavapipe_options());
-        messages = ctx.validation_counter();
-        gpu::OffscreenPresenter presenter(ctx, kTarget);
-        gpu::CommandPool commands(ctx);
-        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        scene_pass.set_view(scene.frame_view());
-        ImagePanelPass panel(ctx, presenter.format(), kRect);
-        gpu::Image image(ctx, kImage, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                         VK_IMAGE_ASPECT_COLOR_BIT);
-        gpu::upload_image(commands, image, std::as_bytes(std::span(bytes)));
-        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
-        for (int s = 0; s < gpu::kFramesInFlight; ++s) panel.show(s, image, nearest);
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
+        const gpu::Image image = texel.upload(rig.commands);
+        rig.panel.show(image, rig.nearest);
 
-        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);
-        const gpu::FramePasses passes{&scene_pass, &panel};
-        for (auto& f : frames) presenter.render(passes, &f);  // slot 1, then slot 0
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
+        const gpu::FramePasses passes{&rig.scene_pass, &rig.panel};
+        for (auto& f : frames) rig.presenter.render(passes, &f);  // slot 1, then slot 0
     }
     EXPECT_EQ(messages->load(), 0u);
 
@@ -122,12 +146,56 @@ TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
     }
 }
 
+TEST(ImagePanel, EachFrameShowsTheImageShownBeforeIt)
+{
+    // the offscreen presenter alternates the slots: a slot last recorded with another image must
+    // be re-pointed when it is recorded again
+    const RandomImage texels[3] = {RandomImage(21), RandomImage(22), RandomImage(23)};
+    constexpr int kNone = -1;
+    // what is shown before each frame (kNone: show() not called), and what the frame must show
+    const int show[] = {kNone, 0, 1, kNone, 2, 0, kNone, kNone, 1};
+    const int expect[] = {kNone, 0, 1, 1, 2, 0, 0, 0, 1};
+
+    app::DefaultScene scene;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    io::RgbaImage scene_only, frames[std::size(show)];
+    {
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
+        std::vector<gpu::Image> images;
+        for (const RandomImage& t : texels) images.push_back(t.upload(rig.commands));
+
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
+        const gpu::FramePasses passes{&rig.scene_pass, &rig.panel};
+        for (std::size_t f = 0; f < std::size(show); ++f) {
+            if (show[f] != kNone) rig.panel.show(images[std::size_t(show[f])], rig.nearest);
+            rig.presenter.render(passes, &frames[f]);
+        }
+    }
+    EXPECT_EQ(messages->load(), 0u);
+
+    for (std::size_t f = 0; f < std::size(show); ++f) {
+        if (expect[f] == kNone) {
+            EXPECT_EQ(frames[f].pixels, scene_only.pixels) << "frame " << f << ": nothing shown yet, the scene alone expected";
+            continue;
+        }
+        const PixelCheck c = check(frames[f], scene_only, texels[expect[f]]);
+        EXPECT_EQ(c.outside_changed, 0) << "frame " << f;
+        EXPECT_EQ(c.inside_wrong, 0) << "frame " << f << ": not image " << expect[f];
+    }
+    // the images differ: a frame with a stale binding could not pass the checks above
+    EXPECT_NE(texels[0].bytes, texels[1].bytes);
+    EXPECT_NE(frames[1].pixels, frames[2].pixels);
+}
+
 // A compute pass of the frame: writes this slot's image with the pattern kernel (its seed per slot)
-// and leaves it for the panel's fragment shader.
+// and leaves it for the panel's fragment shader, which it tells to show it (the panel re-points the
+// slot's binding when it records that slot).
 class PatternPass final : public gpu::FramePass {
 public:
-    explicit PatternPass(const gpu::Context& ctx)
-        : kernel_(ctx, test::kernels::pattern_comp, "pattern.comp", {gpu::BindingKind::storage_image, gpu::BindingKind::uniform_buffer}, 0)
+    PatternPass(const gpu::Context& ctx, ImagePanelPass& panel, const gpu::Sampler& sampler)
+        : ctx_(ctx), panel_(panel), sampler_(sampler),
+          kernel_(ctx, test::kernels::pattern_comp, "pattern.comp", {gpu::BindingKind::storage_image, gpu::BindingKind::uniform_buffer}, 0)
     {
         for (int s = 0; s < gpu::kFramesInFlight; ++s) {
             images_.emplace_back(ctx, kImage, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
@@ -139,8 +207,11 @@ public:
         for (int s = 0; s < gpu::kFramesInFlight; ++s)
             kernel_.bind(s, {gpu::Binding::storage(images_[std::size_t(s)]), gpu::Binding::uniform(params_[std::size_t(s)])});
     }
+    // frames in flight may still write the images (gpu/frame.hpp, "Lifetime")
+    ~PatternPass() override { ctx_.wait_idle(); }
+    PatternPass(const PatternPass&) = delete;
+    PatternPass& operator=(const PatternPass&) = delete;
     static std::uint32_t seed(int slot) { return 17u + 100u * std::uint32_t(slot); }
-    const gpu::Image& image(int slot) const { return images_[std::size_t(slot)]; }
 
     const char* name() const override { return "pattern (compute)"; }
     gpu::TargetUse target_use() const override { return gpu::TargetUse::none(); }
@@ -155,9 +226,13 @@ public:
         gpu::transition(frame.cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        panel_.show(images_[std::size_t(frame.slot)], sampler_);
     }
 
 private:
+    const gpu::Context& ctx_;
+    ImagePanelPass& panel_;
+    const gpu::Sampler& sampler_;
     gpu::ComputeKernel kernel_;
     std::vector<gpu::Image> images_;
     std::vector<gpu::Buffer> params_;
@@ -169,20 +244,13 @@ TEST(ImagePanel, ShowsWhatAComputePassOfTheSameFrameWrote)
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     io::RgbaImage scene_only, frames[2 * gpu::kFramesInFlight];
     {
-        gpu::Context ctx(test::lavapipe_options());
-        messages = ctx.validation_counter();
-        gpu::OffscreenPresenter presenter(ctx, kTarget);
-        gpu::CommandPool commands(ctx);
-        ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        scene_pass.set_view(scene.frame_view());
-        PatternPass pattern(ctx);
-        ImagePanelPass panel(ctx, presenter.format(), kRect);
-        const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
-        for (int s = 0; s < gpu::kFramesInFlight; ++s) panel.show(s, pattern.image(s), nearest);
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
+        PatternPass pattern(rig.ctx, rig.panel, rig.nearest);
 
-        presenter.render(gpu::FramePasses{&scene_pass}, &scene_only);  // slot 0
-        const gpu::FramePasses passes{&pattern, &scene_pass, &panel};
-        for (auto& f : frames) presenter.render(passes, &f);  // slots 1, 0, 1, 0
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);  // slot 0
+        const gpu::FramePasses passes{&pattern, &rig.scene_pass, &rig.panel};
+        for (auto& f : frames) rig.presenter.render(passes, &f);  // slots 1, 0, 1, 0
     }
     EXPECT_EQ(messages->load(), 0u);
 

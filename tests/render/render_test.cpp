@@ -47,12 +47,12 @@ class SceneRender : public testing::Test {
 protected:
     struct Gpu {
         gpu::Context ctx;
-        gpu::OffscreenPresenter presenter;
         gpu::CommandPool commands;
+        gpu::OffscreenPresenter presenter;
         render::ScenePass scene_pass;
         gpu::FramePasses passes;
         explicit Gpu(const app::DefaultScene& scene)
-            : ctx(test::lavapipe_options()), presenter(ctx, {kWidth, kHeight}), commands(ctx),
+            : ctx(test::lavapipe_options()), commands(ctx), presenter(commands, {kWidth, kHeight}),
               scene_pass(ctx, commands, presenter.format(), scene.meshes()), passes{&scene_pass}
         {
         }
