@@ -32,48 +32,27 @@ Groups Groups::cover(VkExtent3D items, VkExtent3D group)
 
 ComputeKernel::ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name,
                              std::span<const BindingKind> bindings, std::uint32_t push_bytes)
-    : ctx_(ctx), name_(name), push_bytes_(push_bytes), descriptors_(ctx, bindings, VK_SHADER_STAGE_COMPUTE_BIT, name)
+    : ctx_(ctx), name_(name), push_bytes_(push_bytes), descriptors_(ctx, bindings, VK_SHADER_STAGE_COMPUTE_BIT, name),
+      pipeline_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes}, name,
+                [&](VkPipelineLayout layout) {
+                    const VkDevice dev = ctx.device();
+                    VkShaderModule module = create_shader_module(dev, spirv, name);
+                    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+                    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module,
+                                  "main", nullptr};
+                    info.layout = layout;
+                    VkPipeline pipeline = VK_NULL_HANDLE;
+                    const VkResult result = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+                    vkDestroyShaderModule(dev, module, nullptr);
+                    check(result, (std::string("vkCreateComputePipelines ") + name).c_str());
+                    return pipeline;
+                })
 {
-    const VkDevice dev = ctx.device();
-    try {
-        const VkDescriptorSetLayout set_layout = descriptors_.layout();
-        VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
-        VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-        layout_info.setLayoutCount = 1;
-        layout_info.pSetLayouts = &set_layout;
-        layout_info.pushConstantRangeCount = push_bytes > 0 ? 1 : 0;
-        layout_info.pPushConstantRanges = &push;
-        check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &layout_), "vkCreatePipelineLayout (compute)");
-
-        VkShaderModule module = create_shader_module(dev, spirv, name);
-        VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
-        info.layout = layout_;
-        const VkResult result = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-        vkDestroyShaderModule(dev, module, nullptr);
-        check(result, (std::string("vkCreateComputePipelines ") + name).c_str());
-    } catch (...) {
-        destroy();
-        throw;
-    }
 }
 
-ComputeKernel::~ComputeKernel()
-{
-    // frames in flight may still dispatch it (gpu/frame.hpp, "Lifetime"); the descriptor sets go
-    // after this, with the member that holds them
-    ctx_.wait_idle();
-    destroy();
-}
-
-void ComputeKernel::destroy()
-{
-    const VkDevice dev = ctx_.device();
-    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
-    if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
-    pipeline_ = VK_NULL_HANDLE;
-    layout_ = VK_NULL_HANDLE;
-}
+// frames in flight may still dispatch it (gpu/frame.hpp, "Lifetime"); the pipeline and the
+// descriptor sets go after this, with their members
+ComputeKernel::~ComputeKernel() { ctx_.wait_idle(); }
 
 void ComputeKernel::record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups) const
 {
@@ -84,12 +63,12 @@ void ComputeKernel::record(VkCommandBuffer cmd, int slot, std::span<const std::b
         throw std::out_of_range(std::string(name_) + ": frame slot " + std::to_string(slot) + " does not exist");
     if (!descriptors_.bound(slot))
         throw std::logic_error(std::string(name_) + ": slot " + std::to_string(slot) + " dispatched before its resources were bound");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
     if (descriptors_.size() > 0) {
         const VkDescriptorSet set = descriptors_.set(slot);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout(), 0, 1, &set, 0, nullptr);
     }
-    if (push_bytes_ > 0) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push.data());
+    if (push_bytes_ > 0) vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push.data());
     vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
 }
 

@@ -19,6 +19,7 @@
 #include <vulkan/vulkan.h>
 
 #include "gpu/context.hpp"
+#include "gpu/pipeline.hpp"
 #include "gpu/descriptors.hpp"
 #include "gpu/frame.hpp"
 #include "gpu/resources.hpp"
@@ -59,13 +60,11 @@ public:
     void record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups) const;
 
 private:
-    void destroy();
     const Context& ctx_;
     const char* name_;
     std::uint32_t push_bytes_;
     SlotDescriptors descriptors_;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    Pipeline pipeline_;  // on descriptors_' layout: declared after it
 };
 
 }  // namespace echosim::gpu

@@ -33,47 +33,24 @@ VkRect2D panel_pixels(const PanelRect& rect, VkExtent2D extent)
 }
 
 ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, PanelRect rect)
-    : ctx_(ctx), color_format_(color_format), rect_(rect), descriptors_(ctx, kBindings, VK_SHADER_STAGE_FRAGMENT_BIT, "image panel")
+    : ctx_(ctx), color_format_(color_format), rect_(rect), descriptors_(ctx, kBindings, VK_SHADER_STAGE_FRAGMENT_BIT, "image panel"),
+      pipeline_(ctx.device(), descriptors_.layout(), {}, "panel", [&](VkPipelineLayout layout) {
+          // no vertex buffers: the vertex shader makes the quad's corners from their index; opaque:
+          // the panel replaces the scene under it
+          GraphicsPipelineDesc desc;
+          desc.name = "panel";
+          desc.vertex_spirv = shaders::panel_vert;
+          desc.fragment_spirv = shaders::panel_frag;
+          desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+          desc.color_format = color_format;
+          return create_graphics_pipeline(ctx.device(), layout, desc);
+      })
 {
-    const VkDevice dev = ctx.device();
-    try {
-        const VkDescriptorSetLayout set_layout = descriptors_.layout();
-        VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-        layout_info.setLayoutCount = 1;
-        layout_info.pSetLayouts = &set_layout;
-        gpu::check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout (panel)");
-
-        // no vertex buffers: the vertex shader makes the quad's corners from their index; opaque:
-        // the panel replaces the scene under it
-        GraphicsPipelineDesc desc;
-        desc.name = "panel";
-        desc.vertex_spirv = shaders::panel_vert;
-        desc.fragment_spirv = shaders::panel_frag;
-        desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
-        desc.color_format = color_format_;
-        pipeline_ = create_graphics_pipeline(dev, pipeline_layout_, desc);
-    } catch (...) {
-        destroy();
-        throw;
-    }
 }
 
-ImagePanelPass::~ImagePanelPass()
-{
-    // frames in flight may still use the pipeline and the descriptor sets (gpu/frame.hpp,
-    // "Lifetime"); the sets go after this, with their member
-    ctx_.wait_idle();
-    destroy();
-}
-
-void ImagePanelPass::destroy()
-{
-    const VkDevice dev = ctx_.device();
-    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
-    if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
-    pipeline_ = VK_NULL_HANDLE;
-    pipeline_layout_ = VK_NULL_HANDLE;
-}
+// frames in flight may still use the pipeline and the descriptor sets (gpu/frame.hpp,
+// "Lifetime"); they go after this, with their members
+ImagePanelPass::~ImagePanelPass() { ctx_.wait_idle(); }
 
 void ImagePanelPass::show(const gpu::Image& image, const gpu::Sampler& sampler)
 {
@@ -111,9 +88,9 @@ void ImagePanelPass::record(const gpu::PassContext& frame)
     const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(frame.cmd, 0, 1, &vp);
     vkCmdSetScissor(frame.cmd, 0, 1, &area);
-    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
     const VkDescriptorSet set = descriptors_.set(frame.slot);
-    vkCmdBindDescriptorSets(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PANEL_IMAGE_SET, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), PANEL_IMAGE_SET, 1, &set, 0, nullptr);
     vkCmdDraw(frame.cmd, PANEL_VERTEX_COUNT, 1, 0, 0);
     vkCmdEndRendering(frame.cmd);
 }

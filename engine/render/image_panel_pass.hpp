@@ -25,6 +25,7 @@
 #include "gpu/context.hpp"
 #include "gpu/descriptors.hpp"
 #include "gpu/frame.hpp"
+#include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 
 namespace echosim::render {
@@ -66,7 +67,6 @@ private:
         bool operator==(const Shown&) const = default;
     };
 
-    void destroy();
     const gpu::Context& ctx_;
     VkFormat color_format_;
     PanelRect rect_;
@@ -74,8 +74,7 @@ private:
     const gpu::Sampler* sampler_ = nullptr;
     std::array<Shown, gpu::kFramesInFlight> bound_{};  // per slot
     gpu::SlotDescriptors descriptors_;
-    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    gpu::Pipeline pipeline_;  // on descriptors_' layout: declared after it
 };
 
 }  // namespace echosim::render

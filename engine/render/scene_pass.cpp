@@ -37,66 +37,39 @@ std::span<const std::byte> bytes_of(std::span<const T> s)
 
 ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkFormat color_format, const SceneMeshes& meshes)
     : ctx_(ctx), color_format_(color_format),
-      descriptors_(ctx, kBindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "scene")
+      descriptors_(ctx, kBindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "scene"),
+      pipeline_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)},
+                "mesh", [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat); })
 {
-    try {
-        // static geometry goes to device-local memory once
-        static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        static_mesh_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-        static_mesh_.index_count = std::uint32_t(meshes.static_mesh.indices.size());
-        probe_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        probe_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-        probe_.index_count = std::uint32_t(meshes.probe.indices.size());
-        patch_indices_ = upload_buffer(uploads, bytes_of(std::span(meshes.patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-        patch_index_count_ = std::uint32_t(meshes.patch_rest.indices.size());
-        patch_vertex_count_ = meshes.patch_rest.vertices.size();
+    // static geometry goes to device-local memory once
+    static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    static_mesh_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    static_mesh_.index_count = std::uint32_t(meshes.static_mesh.indices.size());
+    probe_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    probe_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    probe_.index_count = std::uint32_t(meshes.probe.indices.size());
+    patch_indices_ = upload_buffer(uploads, bytes_of(std::span(meshes.patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    patch_index_count_ = std::uint32_t(meshes.patch_rest.indices.size());
+    patch_vertex_count_ = meshes.patch_rest.vertices.size();
 
-        for (int i = 0; i < kFramesInFlight; ++i) {
-            Slot& slot = slots_[std::size_t(i)];
-            slot.uniforms = gpu::Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
-            slot.patch_vertices = gpu::Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
-                                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
-            slot.patch_vertices.write(bytes_of(std::span(meshes.patch_rest.vertices)));
-            // each slot's set points at its own uniforms for good: bound once, at set-up
-            const gpu::Binding uniforms = gpu::Binding::uniform(slot.uniforms);
-            descriptors_.bind(i, std::span(&uniforms, 1));
-        }
-        create_pipeline();
-    } catch (...) {
-        destroy();
-        throw;
+    for (int i = 0; i < kFramesInFlight; ++i) {
+        Slot& slot = slots_[std::size_t(i)];
+        slot.uniforms = gpu::Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
+        slot.patch_vertices = gpu::Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
+                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
+        slot.patch_vertices.write(bytes_of(std::span(meshes.patch_rest.vertices)));
+        // each slot's set points at its own uniforms for good: bound once, at set-up
+        const gpu::Binding uniforms = gpu::Binding::uniform(slot.uniforms);
+        descriptors_.bind(i, std::span(&uniforms, 1));
     }
 }
 
-ScenePass::~ScenePass()
-{
-    // frames in flight may still use the pipeline, the descriptor sets and the slots' buffers
-    // (gpu/frame.hpp, "Lifetime"); the members go after this
-    ctx_.wait_idle();
-    destroy();
-}
+// frames in flight may still use the pipeline, the descriptor sets and the slots' buffers
+// (gpu/frame.hpp, "Lifetime"); the members go after this
+ScenePass::~ScenePass() { ctx_.wait_idle(); }
 
-void ScenePass::destroy()
+VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format)
 {
-    const VkDevice dev = ctx_.device();
-    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
-    if (pipeline_layout_) vkDestroyPipelineLayout(dev, pipeline_layout_, nullptr);
-    pipeline_ = VK_NULL_HANDLE;
-    pipeline_layout_ = VK_NULL_HANDLE;
-}
-
-void ScenePass::create_pipeline()
-{
-    const VkDevice dev = ctx_.device();
-    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)};
-    VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layout_info.setLayoutCount = 1;
-    const VkDescriptorSetLayout set_layout = descriptors_.layout();
-    layout_info.pSetLayouts = &set_layout;
-    layout_info.pushConstantRangeCount = 1;
-    layout_info.pPushConstantRanges = &push;
-    check(vkCreatePipelineLayout(dev, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout");
-
     const VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
     const VkVertexInputAttributeDescription attributes[3] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, position)},
@@ -113,16 +86,16 @@ void ScenePass::create_pipeline()
     // framebuffer and our y-flipped projection cancel, so front faces stay counter-clockwise
     desc.cull = VK_CULL_MODE_BACK_BIT;
     desc.front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    desc.color_format = color_format_;
-    desc.depth_format = depth_format_;
-    pipeline_ = create_graphics_pipeline(dev, pipeline_layout_, desc);
+    desc.color_format = color_format;
+    desc.depth_format = depth_format;
+    return create_graphics_pipeline(dev, layout, desc);
 }
 
 void ScenePass::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
                     const glm::mat4& model, const glm::vec4& tint)
 {
     const DrawPush push{model, tint};
-    vkCmdPushConstants(cmd, pipeline_layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+    vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
     vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
@@ -144,7 +117,7 @@ void ScenePass::record(const gpu::PassContext& pass)
     const FrameView& view = view_;
     Slot& slot = slots_[std::size_t(pass.slot)];
     if (slot.depth.extent().width != target.extent.width || slot.depth.extent().height != target.extent.height)
-        slot.depth = gpu::Image(ctx_, target.extent, depth_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+        slot.depth = gpu::Image(ctx_, target.extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                 VK_IMAGE_ASPECT_DEPTH_BIT);
 
     // per-frame data: the slot's fence has signalled, so the GPU no longer reads these buffers
@@ -195,9 +168,9 @@ void ScenePass::record(const gpu::PassContext& pass)
     const VkRect2D scissor{{0, 0}, target.extent};
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
     const VkDescriptorSet set = descriptors_.set(pass.slot);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, MESH_FRAME_SET, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), MESH_FRAME_SET, 1, &set, 0, nullptr);
 
     const glm::mat4 identity(1.0f);
     draw(cmd, static_mesh_.vertices.handle(), static_mesh_.indices.handle(), static_mesh_.index_count, identity,

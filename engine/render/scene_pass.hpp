@@ -22,6 +22,7 @@
 #include "gpu/context.hpp"
 #include "gpu/descriptors.hpp"
 #include "gpu/frame.hpp"
+#include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "scene/camera.hpp"
 #include "scene/mesh.hpp"
@@ -71,17 +72,15 @@ private:
         gpu::Image depth;
     };
 
-    void create_pipeline();
-    void destroy();  // releases the raw handles; members with destructors release themselves
+    static VkPipeline create_mesh_pipeline(VkDevice device, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format);
     void draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
               const glm::mat4& model, const glm::vec4& tint);
 
     const gpu::Context& ctx_;
     VkFormat color_format_;
-    VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;
+    static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
     gpu::SlotDescriptors descriptors_;  // per slot: the slot's uniforms
-    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    gpu::Pipeline pipeline_;            // on descriptors_' layout: declared after it
     GpuMesh static_mesh_, probe_;
     gpu::Buffer patch_indices_;
     std::uint32_t patch_index_count_ = 0;
