@@ -11,6 +11,8 @@
 #include <system_error>
 #include <utility>
 
+#include "io/text_fields.hpp"
+
 namespace echosim::io {
 
 template <class Error>
@@ -51,7 +53,7 @@ public:
         committed_ = true;
     }
 
-    [[noreturn]] void fail(const std::string& why) const { throw Error(path_.string() + ": " + why); }
+    [[noreturn]] void fail(const std::string& why) const { text::fail<Error>(path_, why); }
 
 private:
     std::filesystem::path path_;
