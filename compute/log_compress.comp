@@ -16,7 +16,6 @@ void main()
     if (i >= params.pixel_count) return;
     float amplitude = max(envelope[i], 1e-20);
     float db = 20.0 * log2(amplitude / params.reference) * 0.30102999566 + params.gain_db;  // log10(x) = log2(x) log10(2)
-    float level = clamp((db + params.dynamic_range_db) / params.dynamic_range_db, 0.0, 1.0);
-    uint grey = uint(level * 255.0 + 0.5);
+    uint grey = display_grey(db, params.dynamic_range_db);
     image[i] = grey | (grey << 8) | (grey << 16) | (255u << 24);
 }

@@ -4,10 +4,10 @@
 #ifndef ECHOSIM_LOG_COMPRESS_BINDINGS_H
 #define ECHOSIM_LOG_COMPRESS_BINDINGS_H
 
+#include "kernel_shared.h"
+
 #ifdef __cplusplus
-#include <cstdint>
 namespace echosim::kernels {
-using uint = std::uint32_t;
 #endif
 
 #define LOG_COMPRESS_GROUP_SIZE 64
@@ -20,6 +20,14 @@ struct LogCompressParams {
     float gain_db;           // overall gain [dB]
     float dynamic_range_db;  // dB below the reference that map to black
 };
+
+// The display's grey level for an echo `db` [dB] relative to full white (gain included): the
+// `dynamic_range_db` below it map linearly onto 0..255, as a scanner's log compression does.
+KERNEL_FN uint display_grey(float db, float dynamic_range_db)
+{
+    float level = clamp((db + dynamic_range_db) / dynamic_range_db, 0.0f, 1.0f);
+    return uint(level * 255.0f + 0.5f);
+}
 
 #ifdef __cplusplus
 }  // namespace echosim::kernels

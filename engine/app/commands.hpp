@@ -82,6 +82,22 @@ struct ReconstructArgs {
 };
 int run_reconstruct(const ReconstructArgs& args);
 
+struct SliceArgs {
+    GpuArgs gpu;
+    std::filesystem::path volume;  // empty: the case's default volume (cached)
+    std::filesystem::path labels;  // empty: none (the paper's linear deformation)
+    std::filesystem::path out;     // .png or .nrrd
+    std::string pose;              // the probe resting on the skin; empty: the patch centre
+    double press_mm = -1;          // < 0: not pressed (unless --force)
+    double force_n = -1;           // < 0: not asked
+    bool cpu = false;
+    std::string case_name = "healthy";
+    double width_mm = 40, depth_mm = 50, pixel_mm = 0.1;
+    double gain_db = 0, dynamic_range_db = 55;
+    double venous_mmhg = 10, heart_rate_bpm = 70, time_s = 0;
+};
+int run_slice(const SliceArgs& args);
+
 struct BenchArgs {
     GpuArgs gpu;
     std::vector<std::string> names;  // empty: all

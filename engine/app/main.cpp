@@ -86,11 +86,34 @@ int main(int argc, char** argv)
     bench_cmd->add_option("--filter", bench.filter, "run only the rows whose name matches this regular expression (e.g. 'physics/50625/')");
     add_gpu_options(bench_cmd, bench.gpu);
 
+    SliceArgs slice;
+    auto* slice_cmd = app.add_subcommand("slice", "one echographic image at a probe pose, pressed by the simulated tissue if asked");
+    slice_cmd->add_option("--volume", slice.volume, "volume (NRRD, uint8); default: the case's volume, made once and cached");
+    slice_cmd->add_option("--labels", slice.labels, "tissue labels on the volume's grid (NRRD, uint8); without: linear deformation");
+    slice_cmd->add_option("--out", slice.out, "image to write: .png, or .nrrd placed in the volume's space")->required();
+    slice_cmd->add_option("--pose", slice.pose, "probe resting on the skin: x,y,z,qw,qx,qy,qz in world (LPS mm); default: the patch centre");
+    slice_cmd->add_option("--press-mm", slice.press_mm, "press the probe this far in and let the tissue settle [mm]")
+        ->check(CLI::Range(0.0, 25.0));
+    slice_cmd->add_option("--force", slice.force_n, "press the probe until the tissue pushes back this hard [N]")
+        ->check(CLI::Range(0.01, 1000.0));
+    slice_cmd->add_flag("--cpu", slice.cpu, "run the CPU twin of the kernels instead of the GPU");
+    slice_cmd->add_option("--case", slice.case_name, "healthy, dvt-acute or dvt-chronic (the vessels' behaviour, and the default volume)");
+    slice_cmd->add_option("--width-mm", slice.width_mm, "image width [mm]")->check(CLI::Range(1.0, 200.0));
+    slice_cmd->add_option("--depth-mm", slice.depth_mm, "image depth [mm]")->check(CLI::Range(1.0, 300.0));
+    slice_cmd->add_option("--pixel-mm", slice.pixel_mm, "pixel size [mm]")->check(CLI::Range(0.005, 5.0));
+    slice_cmd->add_option("--gain-db", slice.gain_db, "overall gain [dB]")->check(CLI::Range(-60.0, 60.0));
+    slice_cmd->add_option("--dynamic-range-db", slice.dynamic_range_db, "display dynamic range [dB]")->check(CLI::Range(10.0, 120.0));
+    slice_cmd->add_option("--venous-mmhg", slice.venous_mmhg, "venous pressure [mmHg]")->check(CLI::Range(0.0, 100.0));
+    slice_cmd->add_option("--heart-rate", slice.heart_rate_bpm, "heart rate [beats/min] (0: no pulse)")->check(CLI::Range(0.0, 250.0));
+    slice_cmd->add_option("--time", slice.time_s, "moment of the heart cycle [s from a diastole]")->check(CLI::Range(0.0, 1e6));
+    add_gpu_options(slice_cmd, slice.gpu);
+
     CLI11_PARSE(app, argc, argv);
 
     const char* which = app.get_subcommands().front()->get_name().c_str();
     try {
         if (render_cmd->parsed()) return run_render(render);
+        if (slice_cmd->parsed()) return run_slice(slice);
         if (run_cmd->parsed()) return run_window(run);
         if (bench_cmd->parsed()) return run_bench(bench);
         if (measure_cmd->parsed()) return run_measure(measure);

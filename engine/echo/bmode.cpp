@@ -93,6 +93,8 @@ std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
 
 }  // namespace
 
+double attenuation_db_cm_mhz(Tissue t) { return kAcoustics[std::size_t(t)].attenuation; }
+
 BModeImage synthesize(const Medium& medium, const Pose& pose, const ScanSpec& spec)
 {
     BModeImage img;

@@ -62,6 +62,10 @@ struct BModeImage {
     std::vector<std::uint8_t> labels;     // Tissue in the image plane
 };
 
+// The one-way attenuation of a tissue in this model [dB/cm/MHz] (the image's deform stage needs it
+// to take away the posterior enhancement behind a lumen that closes).
+double attenuation_db_cm_mhz(Tissue t);
+
 BModeImage synthesize(const Medium& medium, const Pose& probe, const ScanSpec& spec);
 
 // The phantom as a medium.

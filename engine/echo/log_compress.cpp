@@ -9,8 +9,7 @@ std::uint32_t log_compress_pixel(float envelope, const LogCompressParams& p)
 {
     const float amplitude = std::max(envelope, 1e-20f);
     const float db = 20.0f * std::log10(amplitude / p.reference) + p.gain_db;
-    const float level = std::clamp((db + p.dynamic_range_db) / p.dynamic_range_db, 0.0f, 1.0f);
-    const auto grey = std::uint32_t(level * 255.0f + 0.5f);
+    const std::uint32_t grey = kernels::display_grey(db, p.dynamic_range_db);
     return grey | (grey << 8) | (grey << 16) | (255u << 24);
 }
 

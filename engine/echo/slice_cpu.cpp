@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/matrix.hpp>
 
@@ -53,6 +54,44 @@ std::vector<std::uint8_t> slice_labels(const io::Volume& v, const Pose& pose, co
         if (i < 0 || j < 0 || k < 0 || i >= double(v.size[0]) || j >= double(v.size[1]) || k >= double(v.size[2])) return 0;
         return d[v.index(std::size_t(i), std::size_t(j), std::size_t(k))];
     });
+}
+
+SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, std::span<const float> map,
+                            const kernels::SliceParams& p)
+{
+    using namespace kernels;
+    const std::size_t n = std::size_t(p.columns) * p.rows;
+    const bool warped = (p.flags & SLICE_WARPED) != 0u, want_labels = (p.flags & SLICE_LABELS) != 0u;
+    if (warped && map.size() != 2 * n) throw std::invalid_argument("slice: the deform map does not match the image");
+    const std::uint8_t* g = volume.as<std::uint8_t>();
+    const std::uint8_t* l = labels ? labels->as<std::uint8_t>() : nullptr;
+    const vec3 size(float(volume.size[0]), float(volume.size[1]), float(volume.size[2]));
+    SliceOutput out;
+    out.grey.resize(n);
+    if (want_labels) out.labels.assign(n, 0);
+    for (std::uint32_t r = 0; r < p.rows; ++r)
+        for (std::uint32_t c = 0; c < p.columns; ++c) {
+            const std::size_t i = std::size_t(r) * p.columns + c;
+            const float y = warped ? map[2 * i] : pixel_y(r, p.pixel_y_mm);
+            const vec3 index(p.probe_to_index * vec4(pixel_x(c, p.pixel_x_mm, p.width_mm), y, 0.0f, 1.0f));
+            if (inside_volume(index, size)) {
+                const vec3 lo = min(floor(index), size - 2.0f), f = index - lo;
+                const auto x0 = std::size_t(lo.x), y0 = std::size_t(lo.y), z0 = std::size_t(lo.z);
+                float s = 0;
+                for (int dz = 0; dz < 2; ++dz)
+                    for (int dy = 0; dy < 2; ++dy)
+                        for (int dx = 0; dx < 2; ++dx)
+                            s += (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z) *
+                                 float(g[volume.index(x0 + std::size_t(dx), y0 + std::size_t(dy), z0 + std::size_t(dz))]);
+                out.grey[i] = s;
+            }
+            if (want_labels && l) {
+                const vec3 v = floor(index + 0.5f);
+                if (v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < float(labels->size[0]) && v.y < float(labels->size[1]) && v.z < float(labels->size[2]))
+                    out.labels[i] = l[labels->index(std::size_t(v.x), std::size_t(v.y), std::size_t(v.z))];
+            }
+        }
+    return out;
 }
 
 double normalised_cross_correlation(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,

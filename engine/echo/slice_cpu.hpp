@@ -4,16 +4,29 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/pose.hpp"
 #include "echo/bmode.hpp"
 #include "io/nrrd.hpp"
+#include "slice_bindings.h"
 
 namespace echosim::echo {
 
 std::vector<std::uint8_t> slice_grey(const io::Volume& volume, const Pose& pose, const ScanSpec& spec);
 std::vector<std::uint8_t> slice_labels(const io::Volume& labels, const Pose& pose, const ScanSpec& spec);
+
+// The CPU twin of the slice kernel (compute/slice.comp): grey 0..255 per pixel, sampled
+// trilinearly (in float, as the sampler does) where the deform map says (params.flags &
+// SLICE_WARPED: `map` holds 2 floats per pixel) or at the pixel's own depth; and, with
+// SLICE_LABELS, the tissue codes at the nearest voxel of `labels` (sharing the volume's grid).
+struct SliceOutput {
+    std::vector<float> grey;
+    std::vector<std::uint8_t> labels;
+};
+SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, std::span<const float> map,
+                            const kernels::SliceParams& params);
 
 // Image similarity over the pixels where `mask` is non-zero (all when empty).
 double normalised_cross_correlation(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,

@@ -123,6 +123,11 @@ std::vector<std::byte> download_image(CommandPool& pool, const Image& image, VkI
 // signalled: before the host reads a readback buffer or a host-visible storage buffer.
 void host_read_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access);
 
+// Makes what `src_stage` wrote (`src_access`) visible to `dst_stage`'s `dst_access` (one global
+// memory barrier): between two dispatches, the second reading the first's buffers.
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                    VkAccessFlags2 dst_access);
+
 // One image layout transition (synchronization2) covering all mips and layers of a colour or depth image.
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
                 VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,

@@ -9,10 +9,12 @@ namespace echosim::session {
 
 Session::Session(const SessionOptions& options)
     : options_(options), compiled_(physics::compile_model(load_simulation_model(leg_, options.refine), options.physics)),
-      physics_(compiled_), deformer_(leg_, compiled_->tissue), patch_(leg_.patch().rest.vertices)
+      physics_(compiled_), deformer_(leg_, compiled_->tissue), indentation_(*compiled_), patch_(leg_.patch().rest.vertices)
 {
+    echo::check_plane(options_.image);
     probe_.rest = leg_.probe_rest_pose(0.5f, 0.5f);
     view_.patch = &patch_;
+    view_.echo = &echo_;
     view_.probe = probe_.face();
     if (options_.clock == Clock::real_time) physics_.start();
 }
@@ -65,6 +67,27 @@ void Session::press_and_settle(const Pose& rest, double press_mm, double settle_
     }
 }
 
+double Session::press_to_force(const Pose& rest, double force_N)
+{
+    if (!(force_N > 0) || !std::isfinite(force_N))
+        throw std::invalid_argument("probe force " + std::to_string(force_N) + " N: must be finite and > 0");
+    // the force grows with the press: bisect the press, each guess settled from the last
+    double lo = 0, hi = kMaxPressMm, press = 0;
+    press_and_settle(rest, hi);
+    const double deepest = view().probe_force_N;
+    if (deepest < force_N)
+        throw std::invalid_argument("probe force " + std::to_string(force_N) + " N: out of reach, the tissue pushes back " +
+                                    std::to_string(deepest) + " N at the deepest press (" + std::to_string(kMaxPressMm) + " mm)");
+    for (int i = 0; i < 40; ++i) {
+        press = 0.5 * (lo + hi);
+        press_and_settle(rest, press);
+        const double f = view().probe_force_N;
+        if (std::abs(f - force_N) <= 0.02 * force_N) break;
+        (f < force_N ? lo : hi) = press;
+    }
+    return press;
+}
+
 const SessionView& Session::view()
 {
     const physics::SurfaceSnapshot& snap = physics_.latest();
@@ -73,6 +96,14 @@ const SessionView& Session::view()
         shown_step_ = snap.step;
     }
     view_.probe = probe_.face();
+    // the image's input from the same snapshot; before the first step the skin lies at rest
+    echo_.face = view_.probe;
+    echo_.time_s = snap.time;
+    echo_.skin_pressure_kpa = 1000.0 * snap.probe_force_N / (kLinearProbe.face_width_mm * kLinearProbe.face_thickness_mm);
+    if (snap.positions.empty())
+        echo_.columns.assign(options_.image.columns, {float(-probe_.press_mm), 0.0f});
+    else
+        indentation_.compute(view_.probe, probe_.press_mm, snap.positions, options_.image, echo_.columns);
     view_.press_mm = probe_.press_mm;
     view_.probe_force_N = snap.probe_force_N;
     view_.time_s = snap.time;

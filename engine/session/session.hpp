@@ -12,8 +12,12 @@
 //     its own, every PhysicsOptions::time_step of them), or lock-step on simulated time (advance()
 //     runs the steps in the caller's thread: headless runs, exams and tests are reproducible step
 //     for step).
-// The echographic image pipeline (issue 10) and the input and haptic devices (issue 11) join it
-// here; until they exist it holds nothing in their place.
+//   - the echographic image's input: the image plane, the patient's case, and each frame's probe
+//     and indentation (echo::EchoFrame), made from the very physics snapshot whose force the view
+//     reports, so the image and the force always show the same moment. The image pipeline itself
+//     (engine/image, on the GPU, or the CPU twin) draws it, as the scene pass draws the patch; the
+//     volumes it reads are the caller's.
+// The input and haptic devices (issue 11) join it here.
 //
 // Threads and hand-offs. One driver thread (the window's main thread, a headless command, a test)
 // calls every member. The probe command path: the driver sets the probe (place_probe), and
@@ -33,6 +37,8 @@
 #include "physics/physics_options.hpp"
 #include "physics/physics_runner.hpp"
 #include "scene/leg.hpp"
+#include "echo/echo_frame.hpp"
+#include "session/indentation.hpp"
 #include "session/patch_deformer.hpp"
 #include "session/simulation_model.hpp"
 #include "tissue/tissue_model.hpp"
@@ -48,6 +54,8 @@ struct SessionOptions {
     Clock clock = Clock::lock_step;
     int refine = kSimulationRefine;  // tissue grid refinement (7: 2500 nodes)
     physics::PhysicsOptions physics;
+    echo::ImagePlane image;   // the echographic image's plane and pixels
+    echo::PatientCase patient;
 };
 
 // The probe the driver holds: resting on the skin at `rest` (the face on the skin, the beam along
@@ -66,6 +74,9 @@ struct SessionView {
     double probe_force_N = 0; // the tissue's push on the probe along its axis (latest step)
     double time_s = 0;        // simulated time of the latest step
     int resets = 0;           // times the physics recovered from an unstable state
+    // the echographic image's input at the same step: the pressed face, the skin under it per
+    // image column, the pressure of probe_force_N over the face, the time
+    const echo::EchoFrame* echo = nullptr;
 };
 
 class Session {
@@ -76,6 +87,8 @@ public:
     Session& operator=(const Session&) = delete;
 
     const scene::LegModel& leg() const { return leg_; }
+    static constexpr double kMaxPressMm = 25.0;  // the deepest the driver may press [mm]
+
     const tissue::TissueModel& tissue_model() const { return compiled_->tissue; }
     const physics::CompiledModel& compiled_model() const { return *compiled_; }
     Clock clock() const { return options_.clock; }
@@ -97,9 +110,16 @@ public:
     // Lock-step: presses the probe resting at `rest` in to `press_mm` over 0.1 s, then holds it
     // until `settle_s` of simulated time, so the tissue settles under it.
     void press_and_settle(const Pose& rest, double press_mm, double settle_s = 0.4);
+    // Lock-step: presses the probe resting at `rest` until the tissue pushes back with `force_N`
+    // (within 2 %, settled as press_and_settle settles), and returns the press [mm]. Throws
+    // std::invalid_argument when the force is not finite and positive, or out of reach of the
+    // deepest press (25 mm), naming the force it reaches there.
+    double press_to_force(const Pose& rest, double force_N);
 
     // The newest physics state on the render patch (deformed again only when a new step arrived).
     const SessionView& view();
+    const echo::ImagePlane& image_plane() const { return options_.image; }
+    const echo::PatientCase& patient() const { return options_.patient; }
     physics::RunnerStats physics_stats() const { return physics_.stats(); }
     // Stops the physics thread (real time); the view keeps the last state. Also on destruction.
     void stop();
@@ -110,6 +130,7 @@ private:
     std::shared_ptr<const physics::CompiledModel> compiled_;
     physics::PhysicsRunner physics_;
     PatchDeformer deformer_;
+    IndentationProfile indentation_;
     ProbePlacement probe_;
     double sent_press_mm_ = 0;  // the press of the last command sent [mm]
     double time_ = 0;
@@ -117,6 +138,7 @@ private:
     std::int64_t shown_step_ = 0;  // the physics step the view shows (0: the rest state, as the leg gives it)
     std::vector<scene::Vertex> patch_;
     SessionView view_;
+    echo::EchoFrame echo_;
 };
 
 }  // namespace echosim::session

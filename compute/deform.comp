@@ -1,0 +1,36 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "deform_bindings.h"
+
+// The deform stage of the echographic image: one invocation per image column walks it from the skin
+// down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp).
+layout(local_size_x = DEFORM_GROUP_SIZE) in;
+layout(binding = DEFORM_LABELS_BINDING) uniform usampler3D labels;
+layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 profile[]; };
+layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
+layout(std430, binding = DEFORM_SCRATCH_BINDING) buffer Scratch { vec4 scratch[]; };
+layout(std430, binding = DEFORM_MAP_BINDING) writeonly buffer Map { vec2 map[]; };
+layout(push_constant) uniform Push { DeformParams params; };
+
+uint deform_label(vec3 index)
+{
+    ivec3 i = ivec3(floor(index + 0.5));
+    ivec3 size = textureSize(labels, 0);
+    if (any(lessThan(i, ivec3(0))) || any(greaterThanEqual(i, size))) return 0u;
+    uint code = texelFetch(labels, i, 0).r;
+    return code < uint(DEFORM_TISSUE_CODES) ? code : 0u;
+}
+TissueMechanics deform_tissue(uint code) { return tissues[code]; }
+vec2 deform_profile(uint column) { return profile[column]; }
+vec4 scratch_load(uint i) { return scratch[i]; }
+void scratch_store(uint i, vec4 v) { scratch[i] = v; }
+void map_store(uint pixel, vec2 v) { map[pixel] = v; }
+
+#include "deform_column.h"
+
+void main()
+{
+    uint c = gl_GlobalInvocationID.x;
+    if (c >= params.columns) return;
+    deform_column(c, params);
+}

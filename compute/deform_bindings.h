@@ -1,0 +1,124 @@
+// Bindings and maths of compute/deform.comp, the deform stage of the echographic image (paper §6.1,
+// DESIGN.md §1): where, in the undeformed volume, each pixel of the pressed image comes from. Shared
+// with its CPU twin (engine/echo/deform_cpu.cpp) and its dispatcher (engine/image/echo_image_gpu.cpp).
+//
+// The model, one image column (one lateral position x along the array) at a time:
+//   - the column starts at the undeformed skin (y = skin_y in the pressed probe's frame, negative
+//     above the face) and ends at the image's depth, which the deformation does not move (the bone
+//     and the deep tissue hardly move: the tissue model's springs are anchored there);
+//   - the skin under the face moved skin_shift [mm] along the beam (from the physics snapshot);
+//   - the pressure the probe puts on the skin (its force over the face, from the same snapshot)
+//     reaches depth z below the skin as the stress under a uniformly loaded rectangle in an elastic
+//     half-space (Boussinesq, integrated over the face by Newmark): deep tissue feels less of it;
+//   - a vessel's lumen closes by the pressure it feels: a vein once the pressure exceeds the venous
+//     pressure, walls meeting fully; an artery hardly (its own pressure is far higher), and it
+//     widens with the pulse;
+//   - the solid tissues take up the rest of the skin's shift in series, each step of the column by
+//     its compliance times the stress reaching it (skin and fat most, muscle less, bone nothing), up
+//     to a largest strain per tissue. The one unknown per column, the stress level s, makes the
+//     column's shortening equal the skin's shift, so the field is the simulated tissue's; where a
+//     collapsing vein takes more than the shift, s < 0 and the tissue next to it stretches into the
+//     space (tissue flowing in from the sides, which a column cannot show otherwise);
+//   - where a lumen closes, the sound no longer crosses that length of weakly attenuating blood: what
+//     lies below loses the posterior enhancement it had (a gain in dB carried down the column).
+// Without labels the paper's linear deformation applies: one compliance, no decay with depth.
+//
+// Output, per pixel (column-major within a column walk, stored row-major): vec2(source y [mm] in the
+// pressed probe's frame, gain [dB]).
+#ifndef ECHOSIM_DEFORM_BINDINGS_H
+#define ECHOSIM_DEFORM_BINDINGS_H
+
+#include "kernel_shared.h"
+
+#ifdef __cplusplus
+namespace echosim::kernels {
+#endif
+
+#define DEFORM_GROUP_SIZE 32
+#define DEFORM_LABELS_BINDING 0   // usampler3D: tissue codes (a 1-voxel map of 0 without labels)
+#define DEFORM_PROFILE_BINDING 1  // vec2 per column: (skin_y [mm], skin_shift [mm])
+#define DEFORM_TISSUES_BINDING 2  // uniform: TissueMechanics per tissue code
+#define DEFORM_SCRATCH_BINDING 3  // vec4 per column per walk step (the kernel's own working memory)
+#define DEFORM_MAP_BINDING 4      // vec2 per pixel: (source y [mm], gain [dB])
+#define DEFORM_TISSUE_CODES 16
+
+#define DEFORM_INFLOW_MM 2.0f  // how far from a closing lumen the tissue flowing in stretches (halving distance) [mm]
+
+#define DEFORM_PAPER_LINEAR 1u  // no labels: one compliance, no decay with depth
+
+// How one tissue deforms under the stress that reaches it.
+struct TissueMechanics {
+    float compliance;          // solid: strain per kPa of stress [1/kPa]
+    float max_strain;          // solid: the largest strain, in compression and in stretch
+    float collapse_onset_kpa;  // lumen: the transmitted pressure where it begins to close [kPa]
+    float collapse_width_kpa;  // lumen: the pressure over which it goes on to close fully [kPa] (> 0)
+    float max_closure;         // lumen: the fraction of its length it can lose (1: walls meet; 0: not a lumen)
+    float pulse_strain;        // lumen: the fraction it widens at the peak of the pulse
+    float attenuation;         // one way [dB/cm/MHz]: what the sound loses crossing it
+    float pad;
+};
+
+struct DeformParams {
+    mat4 probe_to_index;     // pressed probe frame [mm] (x lateral, y beam, z elevation) -> label voxel index
+    uint columns;
+    uint rows;
+    float pixel_x_mm;        // lateral pixel step [mm]
+    float pixel_y_mm;        // depth pixel step [mm]
+    float width_mm;          // the image's width [mm], centred on the probe
+    float depth_mm;          // the image's depth [mm]
+    float skin_pressure_kpa; // the probe's force over its face [kPa]
+    float pulse;             // where the heart cycle is: 0 (diastole) .. 1 (systolic peak)
+    float face_width_mm;     // the face's extent along the array [mm]
+    float face_length_mm;    // and across it (elevation) [mm]
+    float step_mm;           // the column walk's step [mm]
+    uint max_steps;          // the scratch holds this many steps per column
+    float tgc_db_cm_mhz;     // the attenuation the time-gain compensation assumes [dB/cm/MHz]
+    float frequency_mhz;
+    uint flags;              // DEFORM_PAPER_LINEAR
+    uint pad;
+};
+
+// The vertical stress under the corner of a uniformly loaded l x b rectangle at depth z, as a
+// fraction of the load (Newmark's integration of Boussinesq's solution). A negative l or b counts
+// the rectangle negatively (superposition for points outside the face).
+KERNEL_FN float corner_influence(float l, float b, float z)
+{
+    float m = abs(l) / z, n = abs(b) / z;
+    float m2 = m * m, n2 = n * n, s = m2 + n2 + 1.0f, r = sqrt(s);
+    float first = 2.0f * m * n * r / (s + m2 * n2) * (s + 1.0f) / s;
+    float second = atan(2.0f * m * n * r, s - m2 * n2);  // the branch past pi/2 where m n is large
+    return sign(l) * sign(b) * (first + second) / (4.0f * 3.14159265f);
+}
+
+// The fraction of the skin pressure felt at depth z [mm] below lateral position x [mm] under a face
+// of width w (along x) and length l (elevation), centred at x = 0.
+KERNEL_FN float face_influence(float x, float z, float w, float l)
+{
+    float zz = max(z, 1e-3f);
+    return 2.0f * (corner_influence(0.5f * w + x, 0.5f * l, zz) + corner_influence(0.5f * w - x, 0.5f * l, zz));
+}
+
+// The fraction of its length a lumen loses at transmitted pressure p [kPa] (negative: it widens).
+KERNEL_FN float lumen_closure(TissueMechanics t, float p, float pulse)
+{
+    if (t.max_closure <= 0.0f && t.pulse_strain <= 0.0f) return 0.0f;
+    float onset = t.collapse_onset_kpa, width = max(t.collapse_width_kpa, 1e-6f);
+    return t.max_closure * smoothstep(onset, onset + width, p) - t.pulse_strain * pulse;
+}
+
+// A solid step's strain at stress level s [kPa] with compliance a = compliance x influence [1/kPa].
+KERNEL_FN float solid_strain(float a, float max_strain, float s)
+{
+    return clamp(a * s, -max_strain, max_strain);
+}
+
+// The change [dB] a lumen step of length h [mm] that lost `closure` of itself makes to what lies below.
+KERNEL_FN float closure_gain_db(float closure, float h, TissueMechanics t, float tgc_db_cm_mhz, float frequency_mhz)
+{
+    return -2.0f * closure * h * (tgc_db_cm_mhz - t.attenuation) * frequency_mhz / 10.0f;
+}
+
+#ifdef __cplusplus
+}  // namespace echosim::kernels
+#endif
+#endif

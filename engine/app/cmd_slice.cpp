@@ -1,0 +1,142 @@
+// `echosim slice`: one echographic image at a probe pose, pressed by the simulated tissue if asked
+// (DESIGN.md §4), on the GPU or with --cpu on the CPU twin; PNG to look at, NRRD placed in the
+// volume's space for 3D Slicer.
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "app/gpu_args.hpp"
+#include "app/volume_source.hpp"
+#include "echo/echo_image_cpu.hpp"
+#include "echo/kernel_params.hpp"
+#include "gpu/context.hpp"
+#include "image/echo_image_gpu.hpp"
+#include "io/png.hpp"
+#include "session/session.hpp"
+
+namespace echosim::app {
+namespace {
+
+// The image as NRRD in the volume's space: sizes W H 1, the pixel steps along the probe's lateral
+// and beam axes, the elevational axis scaled by the volume's smallest voxel (a slice that thick).
+io::Volume image_volume(const echo::EchoImage& image, const echo::ImagePlane& plane, const Pose& face, const io::Volume& grid)
+{
+    io::Volume v = io::make_volume({image.columns, image.rows, 1}, io::VoxelType::uint8);
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) v.data[i] = std::uint8_t(image.rgba[i] & 0xffu);
+    const glm::dvec3 ax(face.axis_x()), ay(face.axis_y()), az(face.axis_z());
+    const double thickness = std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
+    v.directions = glm::dmat3(ax * plane.pixel_x_mm(), ay * plane.pixel_y_mm(), az * thickness);
+    v.origin = glm::dvec3(face.position) + ax * (0.5 * plane.pixel_x_mm() - 0.5 * plane.width_mm) + ay * (0.5 * plane.pixel_y_mm());
+    return v;
+}
+
+io::RgbaImage to_png_image(const echo::EchoImage& image)
+{
+    io::RgbaImage png;
+    png.width = image.columns;
+    png.height = image.rows;
+    png.pixels.resize(std::size_t(image.columns) * image.rows * 4);
+    std::memcpy(png.pixels.data(), image.rgba.data(), png.pixels.size());
+    return png;
+}
+
+}  // namespace
+
+int run_slice(const SliceArgs& args)
+{
+    const auto fail = [](const std::string& what) {
+        std::fprintf(stderr, "echosim slice: %s\n", what.c_str());
+        return kExitBadInput;
+    };
+    const std::string ext = args.out.extension().string();
+    if (ext != ".png" && ext != ".nrrd") return fail("--out " + args.out.string() + ": write a .png or a .nrrd");
+    if (!output_folder_exists("slice", "--out", args.out)) return kExitBadInput;
+    if (args.press_mm >= 0 && args.force_n >= 0) return fail("--press-mm and --force: give one or the other");
+    if (args.press_mm > session::Session::kMaxPressMm || !std::isfinite(args.press_mm))
+        return fail("--press-mm " + std::to_string(args.press_mm) + ": must be in 0.." + std::to_string(session::Session::kMaxPressMm));
+
+    session::SessionOptions options;
+    try {
+        options.image = echo::plane_with_pixel(args.width_mm, args.depth_mm, args.pixel_mm);
+        options.patient.which = echo::parse_case(args.case_name);
+    } catch (const std::invalid_argument& e) {
+        return fail(e.what());
+    }
+    options.patient.venous_pressure_mmHg = args.venous_mmhg;
+    options.patient.heart_rate_bpm = args.heart_rate_bpm;
+
+    VolumePair volumes;
+    try {
+        if (args.volume.empty())
+            volumes = case_volume(options.patient.which, [](const std::string& stage, double done) {
+                std::fprintf(stderr, "\rechosim slice: making the default volume: %s %3.0f %%   ", stage.c_str(), 100 * done);
+            });
+        else
+            volumes = user_volume(args.volume, args.labels);
+    } catch (const std::exception& e) {
+        return fail(e.what());
+    }
+    if (args.volume.empty()) std::fprintf(stderr, "\n");
+
+    session::Session session(options);
+    try {
+        const Pose rest = args.pose.empty() ? session.probe().rest : parse_pose(args.pose);
+        session.place_probe({rest, 0.0});
+        double press = args.press_mm;
+        if (args.force_n >= 0) press = session.press_to_force(rest, args.force_n);
+        if (press > 0) session.press_and_settle(rest, press);
+    } catch (const std::invalid_argument& e) {
+        return fail(std::string(args.force_n >= 0 ? "--force: " : "--pose: ") + e.what());
+    }
+    const session::SessionView& view = session.view();
+    echo::EchoFrame frame = *view.echo;
+    frame.time_s = args.time_s;  // the heart's phase the user asked for, not the settle's
+    if (!(view.press_mm > 0)) frame.columns.clear();  // resting on the skin: the undeformed image
+    echo::ScannerSettings scanner;
+    scanner.gain_db = args.gain_db;
+    scanner.dynamic_range_db = args.dynamic_range_db;
+    scanner.markers = ext == ".png";  // NRRD keeps exact values
+
+    const auto start = std::chrono::steady_clock::now();
+    echo::EchoImage image;
+    std::string device = "the CPU twin";
+    std::uint32_t messages = 0;
+    if (args.cpu) {
+        image = echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), options.image, frame, scanner, options.patient);
+    } else {
+        std::shared_ptr<const std::atomic<std::uint32_t>> counter;
+        {
+            gpu::Context ctx(context_options(args.gpu));
+            counter = ctx.validation_counter();
+            gpu::CommandPool pool(ctx);
+            auto gpu_volume = std::make_shared<const image::EchoVolumeGpu>(pool, *volumes.volume, volumes.labels.get());
+            image::EchoImageGpu pipeline(ctx, gpu_volume, options.image, options.patient);
+            pipeline.scanner() = scanner;
+            image = pipeline.render(pool, frame);
+            device = ctx.device_name();
+        }
+        messages = counter->load();
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (ext == ".png")
+        io::write_png(args.out, to_png_image(image));
+    else
+        io::write_nrrd(args.out, image_volume(image, options.image, frame.face, *volumes.volume), true);
+    std::printf("echosim slice: %ux%u image of %s on %s in %.0f ms, written to %s\n", image.columns, image.rows, volumes.description.c_str(),
+                device.c_str(), ms, args.out.c_str());
+    if (view.press_mm > 0)
+        std::printf("echosim slice: probe pressed %.1f mm, tissue pushes back %.2f N (%.1f kPa over the face)\n", view.press_mm,
+                    view.probe_force_N, frame.skin_pressure_kpa);
+    if (messages > 0) {
+        std::fprintf(stderr, "echosim slice: Vulkan validation reported %u message(s)\n", messages);
+        return kExitValidation;
+    }
+    return kExitOk;
+}
+
+}  // namespace echosim::app

@@ -1,0 +1,39 @@
+// Where the echographic image's volume comes from: the user's own (`--volume F.nrrd [--labels
+// F.nrrd]`, for example one reconstructed from their own PLUS recording), or the default case's,
+// made on first use (the phantom imaged and reconstructed: echo/case_volume.hpp, about a minute)
+// and kept in the user's cache ($XDG_CACHE_HOME/echosim, else ~/.cache/echosim), so later runs
+// start at once. A cached pair is written into a folder of its own under a temporary name and
+// renamed into place whole, so a run interrupted while making it leaves no half pair that a later
+// run would take; the folder's name carries the recipe's version, so a changed recipe is remade.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "echo/phantom.hpp"
+#include "io/nrrd.hpp"
+
+namespace echosim::app {
+
+struct VolumePair {
+    std::shared_ptr<const io::Volume> volume;
+    std::shared_ptr<const io::Volume> labels;  // null: none (the paper's linear deformation)
+    std::string description;                   // for messages: where it came from
+};
+
+// The cache folder: $XDG_CACHE_HOME/echosim, else $HOME/.cache/echosim. Throws std::runtime_error
+// when neither variable is set.
+std::filesystem::path cache_folder();
+
+// The default volume of a case, from the cache or made now (telling `progress` what it does and
+// how far it is, 0..1) and cached. Throws std::runtime_error naming the folder when the cache
+// cannot be written, io::NrrdError naming the file when a cached one cannot be read.
+VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress);
+
+// The user's volume and labels (empty path: none), read and checked (uint8, labels on the volume's
+// grid). Throws io::NrrdError or std::invalid_argument naming the file.
+VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels);
+
+}  // namespace echosim::app

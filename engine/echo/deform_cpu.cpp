@@ -1,0 +1,64 @@
+#include "echo/deform_cpu.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+
+namespace echosim::echo {
+namespace kernels_cpu {
+
+using namespace echosim::kernels;
+
+// The kernel's body as a member function: the accessors it calls are this class' members, as they
+// are the shader's globals on the GPU.
+class DeformColumns {
+public:
+    DeformColumns(const io::Volume* labels, std::span<const ColumnProfile> profile, const TissueTable& tissues, std::vector<vec4>& scratch,
+                  std::vector<glm::vec2>& map)
+        : labels_(labels), profile_(profile), tissues_(tissues), scratch_(scratch), map_(map)
+    {
+    }
+
+#include "deform_column.h"
+
+private:
+    uint deform_label(vec3 index) const
+    {
+        if (!labels_) return 0u;
+        const vec3 i = floor(index + 0.5f);
+        if (i.x < 0 || i.y < 0 || i.z < 0 || i.x >= float(labels_->size[0]) || i.y >= float(labels_->size[1]) || i.z >= float(labels_->size[2]))
+            return 0u;
+        const uint code = labels_->as<std::uint8_t>()[labels_->index(std::size_t(i.x), std::size_t(i.y), std::size_t(i.z))];
+        return code < uint(DEFORM_TISSUE_CODES) ? code : 0u;
+    }
+    TissueMechanics deform_tissue(uint code) const { return tissues_[code]; }
+    vec2 deform_profile(uint column) const { return {profile_[column].skin_y_mm, profile_[column].skin_shift_mm}; }
+    vec4 scratch_load(uint i) const { return scratch_[i]; }
+    void scratch_store(uint i, vec4 v) { scratch_[i] = v; }
+    void map_store(uint pixel, vec2 v) { map_[pixel] = v; }
+
+    const io::Volume* labels_;
+    std::span<const ColumnProfile> profile_;
+    const TissueTable& tissues_;
+    std::vector<vec4>& scratch_;
+    std::vector<glm::vec2>& map_;
+};
+
+}  // namespace kernels_cpu
+
+std::vector<glm::vec2> deform_cpu(const io::Volume* labels, std::span<const ColumnProfile> profile, const TissueTable& tissues,
+                                  const kernels::DeformParams& params)
+{
+    if (profile.size() != params.columns)
+        throw std::invalid_argument("deform: " + std::to_string(profile.size()) + " column profiles for " + std::to_string(params.columns) +
+                                    " columns");
+    if (labels && labels->type != io::VoxelType::uint8) throw std::invalid_argument("deform: the label map is not uint8");
+    std::vector<glm::vec4> scratch(std::size_t(params.columns) * params.max_steps);
+    std::vector<glm::vec2> map(std::size_t(params.columns) * params.rows);
+    kernels_cpu::DeformColumns columns(labels, profile, tissues, scratch, map);
+    for (std::uint32_t c = 0; c < params.columns; ++c) columns.deform_column(c, params);
+    return map;
+}
+
+}  // namespace echosim::echo

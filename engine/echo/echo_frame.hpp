@@ -1,0 +1,87 @@
+// What the echographic image pipeline (DESIGN.md §1: slice ▶ deform ▶ post) takes, on the CPU twin
+// and on the GPU alike: the image plane, the scanner's settings, the patient's case, and one frame's
+// probe and indentation, which the session makes from one physics snapshot (so the force the
+// trainee feels and the image they see come from the same moment).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/pose.hpp"
+#include "core/probe_spec.hpp"
+#include "echo/phantom.hpp"
+
+namespace echosim::echo {
+
+// The image of a linear probe: `width_mm` along the array, centred on the probe, by `depth_mm`
+// along the beam from the face, in columns x rows pixels (not necessarily square).
+struct ImagePlane {
+    double width_mm = kLinearProbe.face_width_mm;
+    double depth_mm = kLinearProbe.image_depth_mm;
+    std::uint32_t columns = 400;
+    std::uint32_t rows = 500;
+
+    double pixel_x_mm() const { return width_mm / columns; }
+    double pixel_y_mm() const { return depth_mm / rows; }
+    std::uint64_t pixels() const { return std::uint64_t(columns) * rows; }
+};
+// The most pixels a side may have, and in all (8K UHD fits): the image's buffers grow with it.
+inline constexpr std::uint32_t kMaxImageSide = 8192;
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(7680) * 4320;
+// Throws std::invalid_argument naming the field (width, depth, columns, rows) that is out of range.
+void check_plane(const ImagePlane& plane);
+// The plane of the given size in mm at about `pixel_mm` pixels.
+ImagePlane plane_with_pixel(double width_mm, double depth_mm, double pixel_mm);
+
+// The scanner's controls.
+struct ScannerSettings {
+    double gain_db = 0.0;
+    double dynamic_range_db = 55.0;
+    std::array<float, 8> tgc_db{};  // the time-gain sliders, top to bottom [dB]
+    double focus_mm = 20.0;         // the transmit focus [mm]
+    bool markers = true;            // depth ticks and the focus marker
+    // the dB the volume's grey levels span (the dynamic range it was made with: echo::ScanSpec's)
+    double volume_dynamic_range_db = 55.0;
+};
+
+// The patient: which case, and the pressures and rate the vessels follow.
+struct PatientCase {
+    Case which = Case::healthy;
+    double venous_pressure_mmHg = 10.0;  // supine, at the thigh
+    double heart_rate_bpm = 70.0;        // 0: no pulse
+};
+inline constexpr double kPascalPerMmHg = 133.322;
+
+// Where the heart cycle is at `time_s`: 0 in diastole, rising to 1 at the systolic peak and back
+// over the first 35 % of the cycle (the cycle starts at t = 0).
+double pulse_at(double time_s, double heart_rate_bpm);
+
+// The skin in one image column: where it was before the probe pressed (y along the beam in the
+// pressed probe's frame [mm]: negative above the face) and how far it has moved along the beam.
+struct ColumnProfile {
+    float skin_y_mm = 0.0f;
+    float skin_shift_mm = 0.0f;
+};
+
+// One frame's input.
+struct EchoFrame {
+    Pose face;                            // the probe's face, pressed where it is
+    std::vector<ColumnProfile> columns;   // one per image column, or empty: nothing pressed
+    double skin_pressure_kpa = 0.0;       // the probe's force over its face [kPa]
+    double time_s = 0.0;                  // for the pulse
+};
+
+// One image out of the pipeline. `rgba`: what the display shows (grey, alpha 255); the stages'
+// outputs on the way, for tests and tools: the deform map (vec2 per pixel: source y [mm], gain
+// [dB]; empty when nothing pressed), the sliced grey level (0..255), and the tissue codes at the
+// pixels (when asked for and the volume has labels).
+struct EchoImage {
+    std::uint32_t columns = 0, rows = 0;
+    std::vector<std::uint32_t> rgba;
+    std::vector<float> map;  // 2 per pixel
+    std::vector<float> grey;
+    std::vector<std::uint8_t> labels;
+};
+
+}  // namespace echosim::echo

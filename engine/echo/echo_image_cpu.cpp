@@ -1,0 +1,52 @@
+#include "echo/echo_image_cpu.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "echo/deform_cpu.hpp"
+#include "echo/kernel_params.hpp"
+#include "echo/post_cpu.hpp"
+#include "echo/slice_cpu.hpp"
+#include "echo/tissue_mechanics.hpp"
+
+namespace echosim::echo {
+
+void check_volumes(const io::Volume& volume, const io::Volume* labels)
+{
+    if (volume.type != io::VoxelType::uint8)
+        throw std::invalid_argument(std::string("volume: voxels are ") + io::to_string(volume.type) + ", the image pipeline reads unsigned char");
+    if (volume.voxel_count() == 0) throw std::invalid_argument("volume: no voxels");
+    if (!labels) return;
+    if (labels->type != io::VoxelType::uint8)
+        throw std::invalid_argument(std::string("labels: voxels are ") + io::to_string(labels->type) + ", tissue codes are unsigned char");
+    bool same = labels->size == volume.size;
+    for (int a = 0; a < 3 && same; ++a)
+        for (int b = 0; b < 3; ++b) same = same && std::abs(labels->directions[a][b] - volume.directions[a][b]) < 1e-6;
+    for (int a = 0; a < 3 && same; ++a) same = std::abs(labels->origin[a] - volume.origin[a]) < 1e-6;
+    if (!same) throw std::invalid_argument("labels: not on the volume's grid (sizes, space directions and space origin must match)");
+}
+
+EchoImage render_echo_cpu(const io::Volume& volume, const io::Volume* labels, const ImagePlane& plane, const EchoFrame& frame,
+                          const ScannerSettings& scanner, const PatientCase& patient, bool want_labels)
+{
+    check_volumes(volume, labels);
+    KernelParams k = make_kernel_params(volume, plane, frame, scanner, patient, labels != nullptr);
+    if (want_labels && labels) k.slice.flags |= SLICE_LABELS;
+    EchoImage out;
+    out.columns = plane.columns;
+    out.rows = plane.rows;
+    if (!frame.columns.empty()) {
+        const TissueTable tissues = labels ? tissue_mechanics(patient) : paper_linear_mechanics();
+        const std::vector<glm::vec2> map = deform_cpu(labels, frame.columns, tissues, k.deform);
+        out.map.resize(2 * map.size());
+        for (std::size_t i = 0; i < map.size(); ++i) out.map[2 * i] = map[i].x, out.map[2 * i + 1] = map[i].y;
+    }
+    SliceOutput sliced = slice_stage_cpu(volume, labels, out.map, k.slice);
+    out.rgba = post_cpu(sliced.grey, out.map, k.post);
+    out.grey = std::move(sliced.grey);
+    out.labels = std::move(sliced.labels);
+    return out;
+}
+
+}  // namespace echosim::echo

@@ -1,0 +1,35 @@
+// The three kernels' parameters for one frame (compute/*_bindings.h), made in one place from the
+// frame's inputs, for the CPU twin and the GPU dispatcher alike.
+#pragma once
+
+#include <cstdint>
+
+#include "deform_bindings.h"
+#include "echo/echo_frame.hpp"
+#include "io/nrrd.hpp"
+#include "post_bindings.h"
+#include "slice_bindings.h"
+
+namespace echosim::echo {
+
+// How far above the face the undeformed skin may lie and still be walked by the deform stage [mm]:
+// the deepest press the simulator allows (25 mm) with room for a tilted probe.
+inline constexpr double kMaxSkinAboveFaceMm = 35.0;
+
+struct KernelParams {
+    kernels::DeformParams deform;
+    kernels::SliceParams slice;
+    kernels::PostParams post;
+};
+
+// The deform stage's step down a column [mm]: no finer than a pixel, nor than half the label grid.
+double deform_step_mm(const io::Volume& grid, const ImagePlane& plane);
+// The walk's steps per column the scratch holds.
+std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane);
+
+// `grid`: the volume's geometry (its voxels are not read); `labelled`: whether a label map
+// shares its grid (else the paper's linear deformation); `warped`: whether the frame presses.
+KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane, const EchoFrame& frame,
+                                const ScannerSettings& scanner, const PatientCase& patient, bool labelled);
+
+}  // namespace echosim::echo

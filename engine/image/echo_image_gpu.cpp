@@ -1,0 +1,184 @@
+#include "image/echo_image_gpu.hpp"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "echo/echo_image_cpu.hpp"
+#include "echosim_compute_shaders.hpp"
+
+namespace echosim::image {
+namespace {
+
+constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+
+gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat format)
+{
+    gpu::Image image(pool.context(), VkExtent3D{std::uint32_t(v.size[0]), std::uint32_t(v.size[1]), std::uint32_t(v.size[2])}, format,
+                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    gpu::upload_image(pool, image, std::as_bytes(std::span(v.data)), kRead);
+    return image;
+}
+
+template <class T>
+std::span<const std::byte> bytes_of(const T& value)
+{
+    return std::as_bytes(std::span(&value, 1));
+}
+
+void compute_to_compute(VkCommandBuffer cmd)
+{
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+}  // namespace
+
+EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels)
+    : labelled_(labels != nullptr),
+      linear_(pool.context(), gpu::Filter::linear),
+      nearest_(pool.context(), gpu::Filter::nearest)
+{
+    echo::check_volumes(volume, labels);
+    grid_.size = volume.size;
+    grid_.directions = volume.directions;
+    grid_.origin = volume.origin;
+    grey_ = volume_image(pool, volume, VK_FORMAT_R8_UNORM);
+    if (labels) {
+        labels_ = volume_image(pool, *labels, VK_FORMAT_R8_UINT);
+    } else {
+        io::Volume none = io::make_volume({1, 1, 1}, io::VoxelType::uint8);
+        labels_ = volume_image(pool, none, VK_FORMAT_R8_UINT);
+    }
+}
+
+EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
+                           const echo::PatientCase& patient)
+    : volume_(std::move(volume)),
+      plane_(plane),
+      patient_(patient),
+      max_steps_((echo::check_plane(plane), echo::deform_max_steps(volume_->grid(), plane))),
+      tissues_(ctx, sizeof(echo::TissueTable), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible),
+      deform_(ctx, kernels::deform_comp, "deform.comp",
+              {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
+               gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer},
+              sizeof(kernels::DeformParams)),
+      slice_(ctx, kernels::slice_comp, "slice.comp",
+             {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer,
+              gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer},
+             sizeof(kernels::SliceParams)),
+      post_(ctx, kernels::post_comp, "post.comp",
+            {gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_image},
+            sizeof(kernels::PostParams))
+{
+    static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
+                      DEFORM_MAP_BINDING == 4,
+                  "deform bindings in the order declared above");
+    static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
+                      SLICE_LABEL_OUT_BINDING == 4,
+                  "slice bindings in the order declared above");
+    static_assert(POST_GREY_BINDING == 0 && POST_MAP_BINDING == 1 && POST_IMAGE_BINDING == 2, "post bindings in the order declared above");
+    const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
+    tissues_.write(std::as_bytes(std::span(table)));
+
+    const VkDeviceSize pixels = plane_.pixels();
+    constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    for (int s = 0; s < gpu::kFramesInFlight; ++s) {
+        Slot& slot = slots_[std::size_t(s)];
+        slot.profile = gpu::Buffer(ctx, plane_.columns * sizeof(echo::ColumnProfile), storage, gpu::MemoryUse::host_visible);
+        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(plane_.columns) * max_steps_ * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
+        slot.map = gpu::Buffer(ctx, pixels * 2 * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
+        slot.grey = gpu::Buffer(ctx, pixels * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
+        slot.labels = gpu::Buffer(ctx, pixels * sizeof(std::uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
+        slot.image = gpu::Image(ctx, VkExtent2D{plane_.columns, plane_.rows}, VK_FORMAT_R8G8B8A8_UNORM,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                VK_IMAGE_ASPECT_COLOR_BIT);
+        deform_.bind(s, {gpu::Binding::sampled(volume_->labels(), volume_->nearest()), gpu::Binding::storage(slot.profile),
+                         gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map)});
+        slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
+                        gpu::Binding::storage(slot.map), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels)});
+        post_.bind(s, {gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.map), gpu::Binding::storage(slot.image)});
+    }
+}
+
+void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels)
+{
+    if (!frame.columns.empty() && frame.columns.size() != plane_.columns)
+        throw std::invalid_argument("echographic image: " + std::to_string(frame.columns.size()) + " column profiles for " +
+                                    std::to_string(plane_.columns) + " columns");
+    Slot& slot = slots_[std::size_t(slot_index)];
+    echo::KernelParams k = echo::make_kernel_params(volume_->grid(), plane_, frame, scanner_, patient_, volume_->labelled());
+    k.deform.max_steps = max_steps_;
+    if (want_labels && volume_->labelled()) k.slice.flags |= SLICE_LABELS;
+    const bool warped = !frame.columns.empty();
+
+    // deform: the slot's previous frame is done (the caller waited for it), so its profile is free
+    if (warped) {
+        slot.profile.write(std::as_bytes(std::span(frame.columns)));
+        deform_.record(cmd, slot_index, bytes_of(k.deform), gpu::Groups::cover(plane_.columns, DEFORM_GROUP_SIZE));
+        compute_to_compute(cmd);
+    }
+    // slice, then post into the displayed image (its last contents are not needed)
+    const VkExtent2D extent{plane_.columns, plane_.rows};
+    slice_.record(cmd, slot_index, bytes_of(k.slice), gpu::Groups::cover(extent, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}));
+    compute_to_compute(cmd);
+    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    post_.record(cmd, slot_index, bytes_of(k.post), gpu::Groups::cover(extent, VkExtent2D{POST_GROUP_X, POST_GROUP_Y}));
+    const bool to_transfer = final_layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, final_layout,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                    to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFrame& frame, bool want_labels)
+{
+    const gpu::Context& ctx = pool.context();
+    const VkDeviceSize pixels = plane_.pixels();
+    const bool warped = !frame.columns.empty(), labels = want_labels && volume_->labelled();
+    // one host-visible buffer takes every output back: image, grey, map, labels
+    const VkDeviceSize image_bytes = pixels * 4, grey_bytes = pixels * 4, map_bytes = warped ? pixels * 8 : 0, label_bytes = labels ? pixels * 4 : 0;
+    gpu::Buffer readback(ctx, image_bytes + grey_bytes + map_bytes + label_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::host_visible);
+    const Slot& slot = slots_[0];
+    pool.submit_and_wait([&](VkCommandBuffer cmd) {
+        record(cmd, 0, frame, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, want_labels);
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                            VK_ACCESS_2_TRANSFER_READ_BIT);
+        VkBufferImageCopy to_buffer{};
+        to_buffer.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        to_buffer.imageExtent = {plane_.columns, plane_.rows, 1};
+        vkCmdCopyImageToBuffer(cmd, slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(), 1, &to_buffer);
+        VkDeviceSize at = image_bytes;
+        const auto copy = [&](const gpu::Buffer& from, VkDeviceSize bytes) {
+            const VkBufferCopy region{0, at, bytes};
+            vkCmdCopyBuffer(cmd, from.handle(), readback.handle(), 1, &region);
+            at += bytes;
+        };
+        copy(slot.grey, grey_bytes);
+        if (warped) copy(slot.map, map_bytes);
+        if (labels) copy(slot.labels, label_bytes);
+        gpu::host_read_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    });
+
+    echo::EchoImage out;
+    out.columns = plane_.columns;
+    out.rows = plane_.rows;
+    const auto* bytes = static_cast<const std::byte*>(readback.mapped());
+    out.rgba.resize(pixels);
+    std::memcpy(out.rgba.data(), bytes, image_bytes);
+    out.grey.resize(pixels);
+    std::memcpy(out.grey.data(), bytes + image_bytes, grey_bytes);
+    if (warped) {
+        out.map.resize(2 * pixels);
+        std::memcpy(out.map.data(), bytes + image_bytes + grey_bytes, map_bytes);
+    }
+    if (labels) {
+        const auto* codes = reinterpret_cast<const std::uint32_t*>(bytes + image_bytes + grey_bytes + map_bytes);
+        out.labels.resize(pixels);
+        for (VkDeviceSize i = 0; i < pixels; ++i) out.labels[i] = std::uint8_t(codes[i]);
+    }
+    return out;
+}
+
+}  // namespace echosim::image

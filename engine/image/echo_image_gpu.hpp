@@ -1,0 +1,93 @@
+// The echographic image pipeline on the GPU (DESIGN.md §1): deform ▶ slice ▶ post, the three
+// kernels of compute/, from a volume and its labels held on the GPU as 3-D images to the displayed
+// image, with no round trip through host memory. Per frame the host hands over only the frame's
+// small input (the probe's pose and, per image column, the skin's indentation: echo::EchoFrame).
+//
+// Two uses, one set of kernels:
+//   - live, recorded into the window's frame by a pass before the image panel (app/echo_image_pass:
+//     record() for the frame's slot, then the panel shows image(slot));
+//   - offscreen (render()): one frame, waited for and read back, for `echosim slice`, the tests
+//     and the benchmark.
+// Frame slots: every buffer a frame writes (the profile, the scratch, the deform map, the grey and
+// label images, the displayed image) exists once per slot, so the frame being recorded never
+// touches what the GPU may still be reading for the other slot (gpu/frame.hpp).
+//
+// Lifetime: the kernels wait for the device before they go, and are declared last, so they go
+// first (gpu/frame.hpp, "Lifetime").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "echo/echo_frame.hpp"
+#include "echo/kernel_params.hpp"
+#include "echo/tissue_mechanics.hpp"
+#include "gpu/command_pool.hpp"
+#include "gpu/compute.hpp"
+#include "gpu/frame.hpp"
+#include "gpu/resources.hpp"
+#include "io/nrrd.hpp"
+
+namespace echosim::image {
+
+// A volume and its labels as the kernels sample them: uint8 grey levels (UNORM8, trilinear) and
+// uint8 tissue codes (nearest) on the same grid. Without labels a one-voxel map stands in and the
+// deformation is the paper's linear one. Throws (std::invalid_argument, gpu::VulkanError) naming
+// what does not fit: voxel types, grids, a size the device cannot hold.
+class EchoVolumeGpu {
+public:
+    EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels);
+
+    const io::Volume& grid() const { return grid_; }  // the geometry (no voxels)
+    bool labelled() const { return labelled_; }
+    const gpu::Image& grey() const { return grey_; }
+    const gpu::Image& labels() const { return labels_; }
+    const gpu::Sampler& linear() const { return linear_; }
+    const gpu::Sampler& nearest() const { return nearest_; }
+
+private:
+    io::Volume grid_;
+    bool labelled_ = false;
+    gpu::Image grey_, labels_;
+    gpu::Sampler linear_, nearest_;
+};
+
+class EchoImageGpu {
+public:
+    EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
+                 const echo::PatientCase& patient);
+
+    const echo::ImagePlane& plane() const { return plane_; }
+    echo::ScannerSettings& scanner() { return scanner_; }
+
+    // Records the frame's three stages into `cmd` for frame slot `slot`, leaving the slot's image in
+    // `final_layout` (SHADER_READ_ONLY_OPTIMAL for the panel, visible to fragment shaders; or
+    // TRANSFER_SRC_OPTIMAL for a read-back). `want_labels`: also fill the slot's label buffer.
+    // Throws std::invalid_argument when the frame's profile does not match the plane.
+    void record(VkCommandBuffer cmd, int slot, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels = false);
+    const gpu::Image& image(int slot) const { return slots_[std::size_t(slot)].image; }
+
+    // One frame, offscreen: recorded in slot 0, submitted through `pool` (the calling thread's),
+    // waited for, and read back with the stages' outputs (the map only when the frame presses; the
+    // labels with `want_labels` and a labelled volume). Not while a window's frames use slot 0.
+    echo::EchoImage render(gpu::CommandPool& pool, const echo::EchoFrame& frame, bool want_labels = false);
+
+private:
+    struct Slot {
+        gpu::Buffer profile;  // host-visible, written when the slot is recorded
+        gpu::Buffer scratch, map, grey, labels;
+        gpu::Image image;
+    };
+    std::shared_ptr<const EchoVolumeGpu> volume_;
+    echo::ImagePlane plane_;
+    echo::PatientCase patient_;
+    echo::ScannerSettings scanner_;
+    std::uint32_t max_steps_ = 0;
+    gpu::Buffer tissues_;  // uniform, written once
+    std::array<Slot, gpu::kFramesInFlight> slots_;
+    // last, so destroyed first: they wait for the device before the resources they bind go
+    gpu::ComputeKernel deform_, slice_, post_;
+};
+
+}  // namespace echosim::image
