@@ -100,8 +100,10 @@ const SessionView& Session::view()
     echo_.face = view_.probe;
     echo_.time_s = snap.time;
     echo_.skin_pressure_kpa = 1000.0 * snap.probe_force_N / (kLinearProbe.face_width_mm * kLinearProbe.face_thickness_mm);
-    if (snap.positions.empty())
-        echo_.columns.assign(options_.image.columns, {float(-probe_.press_mm), 0.0f});
+    // not touching: the image is the volume's own (which was taken with the tissue under its own
+    // weight, as it lies now; the nodes' sag under gravity is no indentation)
+    if (snap.positions.empty() || snap.contacts == 0)
+        echo_.columns.clear();
     else
         indentation_.compute(view_.probe, probe_.press_mm, snap.positions, options_.image, echo_.columns);
     view_.press_mm = probe_.press_mm;

@@ -75,7 +75,8 @@ struct SessionView {
     double time_s = 0;        // simulated time of the latest step
     int resets = 0;           // times the physics recovered from an unstable state
     // the echographic image's input at the same step: the pressed face, the skin under it per
-    // image column, the pressure of probe_force_N over the face, the time
+    // image column (none while the probe does not touch the skin), the pressure of probe_force_N
+    // over the face, the time
     const echo::EchoFrame* echo = nullptr;
 };
 

@@ -1,0 +1,118 @@
+// The compression exam's physiology, measured as a sonographer would, from the image: the lumen
+// areas of the femoral vein and artery in the labels the pipeline outputs (CPU twin; the GPU is
+// held to the twin in tests/image/echo_image_gpu_test.cpp), over the femoral vessels at the patch
+// centre, before and after the probe presses with the exam's force. The clinical rule for that
+// force: press until the artery just begins to deform (kExamForceN, where our artery first loses
+// lumen); there a healthy vein is closed, an acute thrombus keeps it open, a chronic one in between.
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "echo/echo_image_cpu.hpp"
+#include "echo/echo_test_volumes.hpp"
+#include "session/session.hpp"
+
+namespace echosim::echo {
+namespace {
+
+constexpr double kExamForceN = 12.0;  // [N] about 1.2 kg on the probe
+
+struct Lumens {
+    double vein = 0, artery = 0;  // [pixels]
+};
+
+Lumens lumens(const EchoImage& image)
+{
+    Lumens l;
+    for (std::uint8_t t : image.labels) {
+        const auto tissue = Tissue(t);
+        l.vein += tissue == Tissue::vein_lumen || tissue == Tissue::thrombus || tissue == Tissue::organised_thrombus;
+        l.artery += tissue == Tissue::artery_lumen;
+    }
+    return l;
+}
+
+struct Exam {
+    Lumens rest, pressed;
+    double force_N = 0;
+};
+
+// the probe resting at the patch centre, then pressed with `force_N`; the image at a diastole
+Exam examine(Case which, double force_N)
+{
+    session::SessionOptions options;
+    options.patient.which = which;
+    session::Session s(options);
+    const scene::LegModel leg;
+    const test::LabelledVolume v = test::phantom_volume(leg, which, s.probe().rest);
+    Exam e;
+    EchoFrame rest = *s.view().echo;
+    rest.columns.clear();
+    e.rest = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), rest, {}, s.patient(), true));
+    s.press_to_force(s.probe().rest, force_N);
+    const session::SessionView& view = s.view();
+    EchoFrame pressed = *view.echo;
+    pressed.time_s = 0;  // diastole: the artery at its narrowest
+    e.pressed = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), pressed, {}, s.patient(), true));
+    e.force_N = view.probe_force_N;
+    std::printf("%s at %.1f N: vein %.0f -> %.0f px, artery %.0f -> %.0f px\n", case_name(which), e.force_N, e.rest.vein, e.pressed.vein,
+                e.rest.artery, e.pressed.artery);
+    return e;
+}
+
+double loss(double before, double after) { return 1.0 - after / before; }
+
+TEST(DeformPhysiology, AtTheExamForceAHealthyVeinClosesAndTheArteryJustBeginsToDeform)
+{
+    const Exam e = examine(Case::healthy, kExamForceN);
+    ASSERT_GT(e.rest.vein, 2000);   // the vessels are in the image: an 11 mm vein is ~9500 px of 0.1 mm
+    ASSERT_GT(e.rest.artery, 1500);
+    EXPECT_NEAR(e.force_N, kExamForceN, 0.02 * kExamForceN);
+    EXPECT_GE(loss(e.rest.vein, e.pressed.vein), 0.90);
+    EXPECT_GT(loss(e.rest.artery, e.pressed.artery), 0.005);  // the rule: it has begun to deform
+    EXPECT_LE(loss(e.rest.artery, e.pressed.artery), 0.15);
+}
+
+TEST(DeformPhysiology, BelowTheExamForceTheArteryKeepsItsLumen)
+{
+    // the rule's other half: a fifth less force and the artery has not begun to deform yet
+    const Exam e = examine(Case::healthy, 0.8 * kExamForceN);
+    EXPECT_LT(loss(e.rest.artery, e.pressed.artery), 0.005);
+}
+
+TEST(DeformPhysiology, AnAcuteThrombusKeepsTheVeinOpen)
+{
+    const Exam e = examine(Case::dvt_acute, kExamForceN);
+    ASSERT_GT(e.rest.vein, 2000);
+    EXPECT_LE(loss(e.rest.vein, e.pressed.vein), 0.20);
+}
+
+TEST(DeformPhysiology, AChronicThrombusLetsTheVeinCompressPartly)
+{
+    const Exam e = examine(Case::dvt_chronic, kExamForceN);
+    ASSERT_GT(e.rest.vein, 1000);
+    EXPECT_GT(loss(e.rest.vein, e.pressed.vein), 0.20);
+    EXPECT_LT(loss(e.rest.vein, e.pressed.vein), 0.90);
+}
+
+TEST(DeformPhysiology, ADeeperPressGivesALargerForceAndASmallerVeinAtTheSameMoment)
+{
+    session::Session s;
+    const scene::LegModel leg;
+    const test::LabelledVolume v = test::phantom_volume(leg, Case::healthy, s.probe().rest);
+    double last_force = -1, last_vein = 1e18;
+    for (const double press : {4.0, 7.0, 10.0}) {
+        s.press_and_settle(s.probe().rest, press);
+        // the force and the image's indentation from one view: one physics snapshot
+        const session::SessionView& view = s.view();
+        const double vein = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), *view.echo, {}, s.patient(), true)).vein;
+        EXPECT_GT(view.probe_force_N, last_force) << press << " mm";
+        EXPECT_LT(vein, last_vein) << press << " mm";
+        EXPECT_NEAR(view.echo->skin_pressure_kpa, 1000 * view.probe_force_N / 400.0, 1e-9);  // the same force, over the face
+        last_force = view.probe_force_N;
+        last_vein = vein;
+    }
+}
+
+}  // namespace
+}  // namespace echosim::echo
