@@ -9,8 +9,11 @@
 #include "app/default_scene.hpp"
 #include "app/exercise_script.hpp"
 #include "app/gpu_args.hpp"
+#include "app/echo_image_pass.hpp"
+#include "app/volume_source.hpp"
 #include "app/window_input.hpp"
 #include "gpu/window.hpp"
+#include "render/image_panel_pass.hpp"
 #include "render/scene_pass.hpp"
 
 namespace echosim::app {
@@ -23,6 +26,16 @@ void apply_to_window(const RunInput& in, gpu::Window& window)
     if (in.restore) glfwRestoreWindow(window.handle());
     if (in.fullscreen) window.set_fullscreen(*in.fullscreen);
     if (in.toggle_fullscreen) window.set_fullscreen(!window.fullscreen());
+}
+
+// The echographic image's panel: the right of the window, as tall as it is, keeping the image's
+// aspect (at most half the width).
+render::PanelRect echo_panel_rect(VkExtent2D window, const echo::ImagePlane& plane)
+{
+    const float aspect = float(plane.width_mm / plane.depth_mm) * float(window.height) / float(std::max(window.width, 1u));
+    const float width = std::min(aspect, 0.5f);
+    const float height = width / aspect;
+    return {1.0f - width, 0.5f * (1.0f - height), width, height};
 }
 
 }  // namespace
@@ -43,6 +56,22 @@ int run_window(const RunArgs& args)
         return kExitBadInput;
     }
 
+    session::SessionOptions session_options{.clock = session::Clock::real_time};
+    VolumePair volumes;
+    try {
+        session_options.patient.which = echo::parse_case(args.case_name);
+        if (args.volume.empty()) {
+            volumes = case_volume(session_options.patient.which, terminal_progress("echosim run"));
+        } else {
+            volumes = user_volume(args.volume, args.labels);
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "\nechosim run: %s\n", e.what());
+        return kExitBadInput;
+    }
+    std::fprintf(stderr, "\r\033[K");
+    std::printf("echosim run: echographic volume: %s\n", volumes.description.c_str());
+
     gpu::Window window({args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"});
     gpu::ContextOptions options = context_options(args.gpu);
     options.instance_extensions = gpu::Window::required_instance_extensions();
@@ -55,11 +84,18 @@ int run_window(const RunArgs& args)
         messages = ctx.validation_counter();
         // the tissue runs in its own thread at 1 kHz; the window sends the probe and draws the
         // latest surface the physics published
-        DefaultScene scene({.clock = session::Clock::real_time});
+        DefaultScene scene(session_options);
         gpu::CommandPool commands(ctx);  // this (the main) thread's
         gpu::WindowPresenter presenter(commands, window);
         render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        const gpu::FramePasses passes{&scene_pass};
+        // the echographic image beside the scene, made on the GPU every frame from the session's
+        // latest physics step (its volume uploaded once)
+        auto volume = std::make_shared<const image::EchoVolumeGpu>(commands, *volumes.volume, volumes.labels.get());
+        image::EchoImageGpu echo_image(ctx, volume, scene.session.image_plane(), scene.session.patient());
+        const gpu::Sampler smooth(ctx, gpu::Filter::linear);
+        render::ImagePanelPass panel(ctx, presenter.format(), {});
+        EchoImagePass echo_pass(echo_image, panel, smooth);
+        const gpu::FramePasses passes{&scene_pass, &echo_pass, &panel};
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
                     "W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
                     ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
@@ -91,8 +127,10 @@ int run_window(const RunArgs& args)
             scene.session.place_probe_on_patch(u, v, press);
             scene.session.advance(dt);
 
-            scene_pass.set_view(scene.frame_view());
-            const session::SessionView& state = scene.session.view();
+            const session::SessionView& state = scene.session.view();  // one physics step for the scene and the image
+            scene_pass.set_view(scene.frame_view(state));
+            echo_pass.set_frame(*state.echo);
+            panel.set_rect(echo_panel_rect(presenter.extent(), scene.session.image_plane()));
             if (scene.session.time() - last_title > 0.2) {
                 char title[160];
                 std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", state.press_mm, state.probe_force_N);

@@ -73,9 +73,7 @@ int run_slice(const SliceArgs& args)
     VolumePair volumes;
     try {
         if (args.volume.empty())
-            volumes = case_volume(options.patient.which, [](const std::string& stage, double done) {
-                std::fprintf(stderr, "\rechosim slice: making the default volume: %s %3.0f %%   ", stage.c_str(), 100 * done);
-            });
+            volumes = case_volume(options.patient.which, terminal_progress("echosim slice"));
         else
             volumes = user_volume(args.volume, args.labels);
     } catch (const std::exception& e) {

@@ -42,6 +42,9 @@ struct RunArgs {
     bool fullscreen = false;
     int frames = 0;         // stop after this many presented frames (0: until the window closes)
     bool exercise = false;  // resize, minimise and toggle fullscreen along the way (smoke tests)
+    std::filesystem::path volume;  // empty: the case's default volume (made once, cached)
+    std::filesystem::path labels;  // with --volume: its tissue labels (empty: linear deformation)
+    std::string case_name = "healthy";
 };
 int run_window(const RunArgs& args);
 

@@ -21,11 +21,9 @@ struct DefaultScene {
 
     render::SceneMeshes meshes() const { return {session.leg().static_mesh(), session.leg().patch().rest, probe_mesh}; }
     // the session's newest state, from the camera
-    render::FrameView frame_view()
-    {
-        const session::SessionView& v = session.view();
-        return {camera, *v.patch, v.probe.matrix(), true};
-    }
+    render::FrameView frame_view() { return frame_view(session.view()); }
+    // a view already taken (so the frame's scene and its echographic image show one physics step)
+    render::FrameView frame_view(const session::SessionView& v) const { return {camera, *v.patch, v.probe.matrix(), true}; }
 };
 
 }  // namespace echosim::app

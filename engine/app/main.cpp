@@ -42,6 +42,9 @@ int main(int argc, char** argv)
     run_cmd->add_flag("--fullscreen", run.fullscreen, "start fullscreen (F11 toggles)");
     run_cmd->add_option("--frames", run.frames, "quit after this many presented frames")->check(CLI::NonNegativeNumber);
     run_cmd->add_flag("--exercise", run.exercise, "resize, minimise and toggle fullscreen while running (smoke test)");
+    run_cmd->add_option("--volume", run.volume, "echographic volume (NRRD, uint8); default: the case's, made once and cached");
+    run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD, uint8); without: linear deformation");
+    run_cmd->add_option("--case", run.case_name, "healthy, dvt-acute or dvt-chronic");
     add_gpu_options(run_cmd, run.gpu);
 
     MeasureArgs measure;

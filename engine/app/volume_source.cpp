@@ -1,5 +1,6 @@
 #include "app/volume_source.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <system_error>
@@ -63,6 +64,17 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     VolumePair pair{std::make_shared<io::Volume>(std::move(made.volume)), std::make_shared<io::Volume>(std::move(made.labels)),
                     "the " + std::string(echo::case_name(which)) + " case's volume, made and cached in " + folder.string()};
     return pair;
+}
+
+std::function<void(const std::string&, double)> terminal_progress(const char* command)
+{
+    return [command, last = std::string(), percent = -1](const std::string& stage, double done) mutable {
+        const int now = int(100 * done);
+        if (stage == last && now == percent) return;
+        last = stage;
+        percent = now;
+        std::fprintf(stderr, "\r%s: making the default volume (once; it is cached): %s %3d %%\033[K", command, stage.c_str(), now);
+    };
 }
 
 VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels)

@@ -32,6 +32,10 @@ std::filesystem::path cache_folder();
 // cannot be written, io::NrrdError naming the file when a cached one cannot be read.
 VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress);
 
+// A progress callback for case_volume that shows "<command>: making the default volume: <stage>
+// NN %" on one terminal line, rewritten only when the stage or the whole percent changes.
+std::function<void(const std::string& stage, double done)> terminal_progress(const char* command);
+
 // The user's volume and labels (empty path: none), read and checked (uint8, labels on the volume's
 // grid). Throws io::NrrdError or std::invalid_argument naming the file.
 VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels);

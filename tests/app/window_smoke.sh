@@ -5,15 +5,20 @@ set -euo pipefail
 echosim=$1
 command -v xvfb-run >/dev/null || { echo "xvfb-run missing: scripts/deps installs xvfb"; exit 1; }
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+work=$(mktemp -d)
+trap 'rm -rf "$log" "$work"' EXIT
+# a small volume of the user's own (a short, coarse sweep reconstructed), shown live beside the scene
+"$echosim" phantom --frames 24 --pixel-mm 0.3 --out "$work/s.mha" >/dev/null
+"$echosim" reconstruct --sweep "$work/s.mha" --out "$work/v.nrrd" --voxel-mm 0.5 >/dev/null 2>&1
 set +e
 xvfb-run -a -s "-screen 0 1920x1080x24" "$echosim" run --frames 80 --exercise --width 800 --height 600 \
-  --gpu cpu --validation >"$log" 2>&1
+  --volume "$work/v.nrrd" --labels "$work/v.labels.nrrd" --gpu cpu --validation >"$log" 2>&1
 rc=$?
 set -e
 cat "$log"
 [[ $rc -eq 0 ]] || { echo "FAIL: echosim run exited $rc"; exit 1; }
 grep -q "presented 80 frames" "$log" || { echo "FAIL: did not present 80 frames"; exit 1; }
+grep -q "echographic volume: $work/v.nrrd with labels" "$log" || { echo "FAIL: the user's volume was not taken"; exit 1; }
 # resize (frame 10), fullscreen (30), windowed (40), resize (50): the swapchain is remade each time
 created=$(sed -n 's/.*swapchain created \([0-9]*\) times.*/\1/p' "$log")
 [[ ${created:-0} -ge 3 ]] || { echo "FAIL: swapchain created ${created:-0} times, expected at least 3"; exit 1; }
