@@ -77,6 +77,9 @@ int run_window(const RunArgs& args)
     options.instance_extensions = gpu::Window::required_instance_extensions();
     options.can_present = &gpu::Window::can_present;
     int presented = 0;
+    // the display rate, from the first presented frame (set-up and the first frame's pipeline
+    // compilation excluded) to the last
+    std::chrono::steady_clock::time_point first_shown, last_shown;
     std::uint32_t swapchains = 0;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
@@ -137,8 +140,10 @@ int run_window(const RunArgs& args)
                 glfwSetWindowTitle(window.handle(), title);
                 last_title = scene.session.time();
             }
-            if (presenter.draw(passes))
-                ++presented;
+            if (presenter.draw(passes)) {
+                last_shown = std::chrono::steady_clock::now();
+                if (++presented == 1) first_shown = last_shown;
+            }
             else
                 glfwWaitEventsTimeout(0.05);  // minimised: do not spin
         }
@@ -148,7 +153,9 @@ int run_window(const RunArgs& args)
         std::printf("echosim run: physics stepped %lld times (%lld late), last probe force %.2f N\n", static_cast<long long>(st.steps),
                     static_cast<long long>(st.overruns), scene.session.view().probe_force_N);
     }
-    std::printf("echosim run: presented %d frames, swapchain created %u times\n", presented, swapchains);
+    const double shown_s = std::chrono::duration<double>(last_shown - first_shown).count();
+    std::printf("echosim run: presented %d frames, swapchain created %u times (%.1f frames/s)\n", presented, swapchains,
+                presented > 1 && shown_s > 0 ? (presented - 1) / shown_s : 0.0);
     const std::uint32_t n = messages->load();
     if (n > 0) {
         std::fprintf(stderr, "echosim run: Vulkan validation reported %u message(s)\n", n);
