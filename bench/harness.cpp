@@ -26,6 +26,7 @@ const std::vector<Suite>& suites()
         {"fit", "two-step tissue fit on assets/measurements/thigh.csv", register_fit, false},
         {"physics", "tissue dynamics steps with the probe pressing and sliding (one core; and all, from 2500 nodes)", register_physics, false},
         {"reconstruct", "freehand reconstruction of 300 tracked 640x480 frames", register_reconstruct, false},
+        {"slice", "echographic image (deform, slice, post) of a pressed frame, 0.3 and 0.1 mm volumes, frames/s", register_slice, true},
     };
     return all;
 }

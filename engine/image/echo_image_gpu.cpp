@@ -101,7 +101,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     }
 }
 
-void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels)
+void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels,
+                          Stages stages)
 {
     if (!frame.columns.empty() && frame.columns.size() != plane_.columns)
         throw std::invalid_argument("echographic image: " + std::to_string(frame.columns.size()) + " column profiles for " +
@@ -111,9 +112,10 @@ void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoF
     k.deform.max_steps = max_steps_;
     if (want_labels && volume_->labelled()) k.slice.flags |= SLICE_LABELS;
     const bool warped = !frame.columns.empty();
+    const bool all = stages == Stages::all;
 
     // deform: the slot's previous frame is done (the caller waited for it), so its profile is free
-    if (warped) {
+    if (warped && all) {
         slot.profile.write(std::as_bytes(std::span(frame.columns)));
         deform_.record(cmd, slot_index, bytes_of(k.deform), gpu::Groups::cover(plane_.columns, DEFORM_GROUP_SIZE));
         compute_to_compute(cmd);
@@ -122,6 +124,7 @@ void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoF
     const VkExtent2D extent{plane_.columns, plane_.rows};
     slice_.record(cmd, slot_index, bytes_of(k.slice), gpu::Groups::cover(extent, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}));
     compute_to_compute(cmd);
+    if (!all) return;
     gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     post_.record(cmd, slot_index, bytes_of(k.post), gpu::Groups::cover(extent, VkExtent2D{POST_GROUP_X, POST_GROUP_Y}));

@@ -53,6 +53,11 @@ private:
     gpu::Sampler linear_, nearest_;
 };
 
+// Which of the frame's stages record() records: all three (a live frame), or the slice kernel
+// alone (the benchmark's split of the frame's cost; a pressed frame's slice then reads the slot's
+// deform map as the slot's last full frame left it, and the displayed image is not written).
+enum class Stages { all, slice_only };
+
 class EchoImageGpu {
 public:
     EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
@@ -64,8 +69,10 @@ public:
     // Records the frame's three stages into `cmd` for frame slot `slot`, leaving the slot's image in
     // `final_layout` (SHADER_READ_ONLY_OPTIMAL for the panel, visible to fragment shaders; or
     // TRANSFER_SRC_OPTIMAL for a read-back). `want_labels`: also fill the slot's label buffer.
+    // `stages`: see Stages (with slice_only, `final_layout` is not used).
     // Throws std::invalid_argument when the frame's profile does not match the plane.
-    void record(VkCommandBuffer cmd, int slot, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels = false);
+    void record(VkCommandBuffer cmd, int slot, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels = false,
+                Stages stages = Stages::all);
     const gpu::Image& image(int slot) const { return slots_[std::size_t(slot)].image; }
 
     // One frame, offscreen: recorded in slot 0, submitted through `pool` (the calling thread's),
