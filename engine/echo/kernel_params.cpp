@@ -49,7 +49,7 @@ double pulse_at(double time_s, double heart_rate_bpm)
 double deform_step_mm(const io::Volume& grid, const ImagePlane& plane)
 {
     const double voxel = std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
-    return std::max(plane.pixel_y_mm(), 0.5 * voxel);
+    return std::max(plane.pixel_y_mm(), voxel);
 }
 
 std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane)

@@ -22,7 +22,8 @@ struct KernelParams {
     kernels::PostParams post;
 };
 
-// The deform stage's step down a column [mm]: no finer than a pixel, nor than half the label grid.
+// The deform stage's step down a column [mm]: no finer than a pixel, nor than the label grid (the
+// labels are read at the nearest voxel: a finer walk reads the same voxel twice).
 double deform_step_mm(const io::Volume& grid, const ImagePlane& plane);
 // The walk's steps per column the scratch holds.
 std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane);
