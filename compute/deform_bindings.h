@@ -13,12 +13,14 @@
 //   - a vessel's lumen closes by the pressure it feels: a vein once the pressure exceeds the venous
 //     pressure, walls meeting fully; an artery hardly (its own pressure is far higher), and it
 //     widens with the pulse;
-//   - the solid tissues take up the rest of the skin's shift in series, each step of the column by
-//     its compliance times the stress reaching it (skin and fat most, muscle less, bone nothing), up
-//     to a largest strain per tissue. The one unknown per column, the stress level s, makes the
-//     column's shortening equal the skin's shift, so the field is the simulated tissue's; where a
-//     collapsing vein takes more than the shift, s < 0 and the tissue next to it stretches into the
-//     space (tissue flowing in from the sides, which a column cannot show otherwise);
+//   - the solid tissues compress in series under the stress that reaches them, each by its
+//     compliance up to a largest strain (skin and fat most, muscle less, bone nothing);
+//   - what the pressure and the lumens leave of the skin's shift (the shift is the simulated
+//     tissue's; the compliances are the image model's) is taken up by the solids too, so the
+//     column's shortening equals the shift and the deep end stays put. Where a lumen closes by more
+//     than that, the remainder is negative: the tissue next to the lumen stretches into the space
+//     (tissue flowing in from the sides, which a column cannot show otherwise), its share halving
+//     every DEFORM_INFLOW_MM from the lumen;
 //   - where a lumen closes, the sound no longer crosses that length of weakly attenuating blood: what
 //     lies below loses the posterior enhancement it had (a gain in dB carried down the column).
 // Without labels the paper's linear deformation applies: one compliance, no decay with depth.
