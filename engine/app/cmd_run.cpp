@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 #include <GLFW/glfw3.h>
 
@@ -60,6 +61,8 @@ int run_window(const RunArgs& args)
     VolumePair volumes;
     try {
         session_options.patient.which = echo::parse_case(args.case_name);
+        if (args.volume.empty() && !args.labels.empty())
+            throw std::invalid_argument("--labels " + args.labels.string() + ": give the --volume they label");
         if (args.volume.empty()) {
             volumes = case_volume(session_options.patient.which, terminal_progress("echosim run"));
         } else {
