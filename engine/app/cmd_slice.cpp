@@ -86,9 +86,11 @@ int run_slice(const SliceArgs& args)
     try {
         const Pose rest = args.pose.empty() ? session.probe().rest : parse_pose(args.pose);
         session.place_probe({rest, 0.0});
-        double press = args.press_mm;
-        if (args.force_n >= 0) press = session.press_to_force(rest, args.force_n);
-        if (press > 0) session.press_and_settle(rest, press);
+        // press_to_force leaves the tissue settled at the press it found
+        if (args.force_n >= 0)
+            session.press_to_force(rest, args.force_n);
+        else if (args.press_mm > 0)
+            session.press_and_settle(rest, args.press_mm);
     } catch (const std::invalid_argument& e) {
         return fail(std::string(args.force_n >= 0 ? "--force: " : "--pose: ") + e.what());
     }
