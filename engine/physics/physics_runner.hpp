@@ -25,7 +25,7 @@
 #include "physics/physics_options.hpp"
 #include "physics/step.hpp"
 #include "physics/tissue_state.hpp"
-#include "physics/triple_buffer.hpp"
+#include "core/triple_buffer.hpp"
 #include "tissue/tissue_model.hpp"
 
 namespace echosim::physics {

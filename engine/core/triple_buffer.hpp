@@ -1,15 +1,15 @@
 // A lock-free triple buffer: one writer publishes whole values, one reader takes the latest one.
 // Neither waits for the other: the writer fills its private slot and swaps it with the shared
 // "latest" slot; the reader swaps that with its own when something new was published. It is the
-// hand-off between the physics thread and its readers (the session on the drawing thread, later
-// the haptic thread): the values are allocated up front (the constructor's prototype) so the hot
+// hand-off between the threads (the physics and its readers, the haptic loop and its device and
+// session): the values are allocated up front (the constructor's prototype) so the hot
 // paths never allocate.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 
-namespace echosim::physics {
+namespace echosim {
 
 template <class T>
 class TripleBuffer {
@@ -41,4 +41,4 @@ private:
     std::atomic<std::uint8_t> latest_{2};
 };
 
-}  // namespace echosim::physics
+}  // namespace echosim

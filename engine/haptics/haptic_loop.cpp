@@ -1,0 +1,160 @@
+#include "haptics/haptic_loop.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <ctime>
+#include <stdexcept>
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/prctl.h>
+
+namespace echosim::haptics {
+namespace {
+
+constexpr std::int64_t kNsPerS = 1'000'000'000;
+
+std::int64_t now_ns()
+{
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return std::int64_t(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+}
+
+void sleep_until_ns(std::int64_t t)
+{
+    const timespec ts{time_t(t / kNsPerS), long(t % kNsPerS)};
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    }
+}
+
+inline void cpu_relax()
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+}  // namespace
+
+HapticLoop::HapticLoop(physics::PhysicsRunner& physics, std::shared_ptr<device::Device> device, const ProbeMapping& mapping,
+                       const HapticOptions& options)
+    : physics_(physics), device_(std::move(device)), mapping_(mapping), options_(options)
+{
+    if (!device_) throw std::invalid_argument("HapticLoop: no device (use device::NullDevice for none)");
+    if (!(options_.rate_hz >= 10.0 && options_.rate_hz <= 20000.0))
+        throw std::invalid_argument("HapticLoop: rate " + std::to_string(options_.rate_hz) + " Hz outside 10..20000");
+    limits_ = ForceLimits::of(device_->capabilities());
+}
+
+HapticLoop::~HapticLoop() { stop(); }
+
+void HapticLoop::tick(double t_s)
+{
+    HapticSample& s = now_;
+    device_->read(t_s, s.device);
+    s.face = mapping_.face(s.device);
+    // velocity from the poses, low-passed: a device that reports slower than the loop moves in steps
+    const double dt = have_last_ ? t_s - last_t_ : 0.0;
+    if (dt > 0.0) {
+        const Eigen::Vector3d raw = (s.face.position - last_position_) / dt;
+        const double a = 1.0 - std::exp(-2.0 * std::numbers::pi * options_.velocity_cutoff_hz * dt);
+        s.velocity += a * (raw - s.velocity);
+    }
+    have_last_ = true;
+    last_t_ = t_s;
+    last_position_ = s.face.position;
+
+    const physics::LocalContactModel& model = physics_.latest_contact();
+    s.force = options_.local_model ? local_model_force(model, s.face.position, s.velocity, limits_) : held_physics_force(model, limits_);
+    s.physics_force_N = model.in_contact ? model.force : 0.0;
+    s.physics_step = model.step;
+    device_->write_force(mapping_.to_device(s.force.world_N, s.device.control));
+
+    physics::ProbeCommand c;
+    c.active = true;
+    c.position = s.face.position;
+    c.orientation = s.face.orientation;
+    c.velocity = s.velocity;
+    physics_.command(c);  // a NaN from a device is refused there, counted, and the probe holds
+
+    s.tick = ticks_.fetch_add(1, std::memory_order_relaxed) + 1;
+    s.time_s = t_s;
+    out_.write_slot() = s;
+    out_.publish();
+}
+
+void HapticLoop::start()
+{
+    if (running_.exchange(true)) return;
+    started_ = 0;
+    thread_ = std::thread([this] { run(); });
+    while (started_.load(std::memory_order_acquire) == 0) std::this_thread::yield();
+    priority_note_.clear();
+    if (!options_.realtime_priority)
+        priority_note_ = "haptic loop: real-time priority not asked for; running best effort";
+    else if (priority_errno_ != 0)
+        priority_note_ = std::string("haptic loop: real-time priority (SCHED_FIFO) refused: ") + std::strerror(priority_errno_) +
+                         "; running best effort (grant it with an rtprio limit in /etc/security/limits.d, or CAP_SYS_NICE)";
+}
+
+void HapticLoop::stop()
+{
+    if (!running_.exchange(false)) return;
+    if (thread_.joinable()) thread_.join();
+}
+
+PeriodStats HapticLoop::stats()
+{
+    if (running_) return stats_out_.read();
+    return stats_;
+}
+
+void HapticLoop::run()
+{
+    // timer slack: the kernel may otherwise wake us up to 50 us late, on purpose
+    prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
+    priority_errno_ = 0;
+    if (options_.realtime_priority) {
+        sched_param p{};
+        p.sched_priority = sched_get_priority_max(SCHED_FIFO) - 10;
+        priority_errno_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+    }
+    started_.store(1, std::memory_order_release);
+
+    const std::int64_t period = std::int64_t(std::llround(1e9 / options_.rate_hz));
+    const std::int64_t spin = std::int64_t(options_.spin_us * 1000.0);
+    const double nominal_ms = double(period) * 1e-6;
+    const std::int64_t origin = now_ns();
+    std::int64_t due = origin + period, last_wake = origin;
+    std::int64_t n = 0;
+    while (running_.load(std::memory_order_relaxed)) {
+        if (due - spin > now_ns()) sleep_until_ns(due - spin);
+        std::int64_t wake = now_ns();
+        while (wake < due) {
+            cpu_relax();
+            wake = now_ns();
+        }
+        stats_.add_period(double(wake - last_wake) * 1e-6, nominal_ms);
+        last_wake = wake;
+        if (wake > due + period) {
+            // woke after the next tick was due: count it, and do not run a burst of ticks to catch up
+            ++stats_.missed_deadlines;
+            due = wake;
+        }
+        tick(double(wake - origin) * 1e-9);
+        const double work_us = double(now_ns() - wake) * 1e-3;
+        if (work_us > stats_.max_tick_us) stats_.max_tick_us = work_us;
+        if (++n % 100 == 0) {
+            stats_out_.write_slot() = stats_;
+            stats_out_.publish();
+        }
+        due += period;
+    }
+    stats_out_.write_slot() = stats_;
+    stats_out_.publish();
+}
+
+}  // namespace echosim::haptics

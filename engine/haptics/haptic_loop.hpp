@@ -1,0 +1,104 @@
+// The haptic loop (DESIGN.md §1 and §2, paper §5.2): every millisecond it reads the device, places
+// the probe, renders the force from the physics' latest local contact model, sends it to the device,
+// and hands the probe's pose and velocity to the physics, which works out the tissue's side of the
+// same contact (the penalty on the skin nodes: the reaction) at its own, slower rate.
+//
+// Hand-offs, all lock-free triple buffers (latest wins), so the loop never waits for anyone:
+//   in:  the LocalContactModel the physics publishes after each step (the loop is its one reader)
+//   out: the probe command to the physics (the loop is its one producer while it runs)
+//   out: a HapticSample to the session's driver thread (pose, force felt, device state)
+// The device's own hand-offs are the driver's (device/device.hpp). Nothing in a tick allocates,
+// locks or throws.
+//
+// Two clocks, as the physics has: start() runs the loop on a thread of its own, sleeping to absolute
+// deadlines (clock_nanosleep) and spinning only the last few tens of microseconds; tick(t) runs one
+// tick in the caller's thread at simulated time t, so a headless exam or a test is reproducible.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "core/triple_buffer.hpp"
+#include "device/device.hpp"
+#include "haptics/force_law.hpp"
+#include "haptics/period_stats.hpp"
+#include "haptics/probe_mapping.hpp"
+#include "physics/physics_runner.hpp"
+
+namespace echosim::haptics {
+
+struct HapticOptions {
+    double rate_hz = 1000.0;
+    double spin_us = 60.0;          // spin this long before each deadline instead of sleeping
+    bool local_model = true;        // false: hold the last physics force (the paper's comparison)
+    bool realtime_priority = true;  // ask for SCHED_FIFO (needs CAP_SYS_NICE or an rtprio limit)
+    double velocity_cutoff_hz = 20; // the probe's velocity, from its poses, low-passed
+};
+
+struct HapticSample {
+    std::int64_t tick = 0;
+    double time_s = 0;                // the loop's clock
+    ProbeFace face;                   // where the device put the probe
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [mm/s], low-passed
+    HapticForce force;                // rendered (and sent to the device)
+    double physics_force_N = 0;       // the last physics step's own force along the axis
+    std::int64_t physics_step = 0;    // the step the local model came from
+    device::DeviceSample device;      // the device's sample this tick
+};
+
+class HapticLoop {
+public:
+    // `physics` and `mapping` must outlive the loop; the loop becomes the physics' one commander.
+    HapticLoop(physics::PhysicsRunner& physics, std::shared_ptr<device::Device> device, const ProbeMapping& mapping,
+               const HapticOptions& options = {});
+    ~HapticLoop();
+    HapticLoop(const HapticLoop&) = delete;
+    HapticLoop& operator=(const HapticLoop&) = delete;
+
+    // lock-step: one tick at time t [s] (not while the thread runs)
+    void tick(double t_s);
+
+    // real time: the loop's thread; start() returns once it runs, its priority settled
+    void start();
+    void stop();
+    bool running() const { return running_.load(); }
+    // "" when it got real-time priority, else why not (said once, by whoever starts it)
+    const std::string& priority_note() const { return priority_note_; }
+
+    // the session's driver thread (one reader): the latest tick
+    const HapticSample& latest() { return out_.read(); }
+    // the timing so far (a copy; the loop's thread keeps adding)
+    PeriodStats stats();  // the driver thread (one reader)
+    std::int64_t ticks() const { return ticks_.load(std::memory_order_relaxed); }
+    const device::Device& device() const { return *device_; }
+    double period_s() const { return 1.0 / options_.rate_hz; }
+
+private:
+    void run();
+
+    physics::PhysicsRunner& physics_;
+    std::shared_ptr<device::Device> device_;
+    const ProbeMapping& mapping_;
+    HapticOptions options_;
+    ForceLimits limits_;
+    // the ticking thread's own
+    HapticSample now_;
+    bool have_last_ = false;
+    double last_t_ = 0;
+    Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();
+    PeriodStats stats_;
+    // hand-offs
+    TripleBuffer<HapticSample> out_;
+    TripleBuffer<PeriodStats> stats_out_;  // published every 100 ticks, for stats() while running
+    std::atomic<std::int64_t> ticks_{0};
+    std::thread thread_;
+    std::atomic<bool> running_{false};
+    std::atomic<int> started_{0};  // 0 starting, 1 running (the thread settled its priority)
+    std::string priority_note_;
+    int priority_errno_ = 0;
+};
+
+}  // namespace echosim::haptics

@@ -1,0 +1,59 @@
+#include "haptics/probe_mapping.hpp"
+
+#include <numbers>
+
+namespace echosim::haptics {
+namespace {
+
+ProbeFace from_pose(const Pose& p)
+{
+    ProbeFace f;
+    f.position = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+    f.orientation = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z).normalized();
+    return f;
+}
+
+}  // namespace
+
+ProbeMapping::ProbeMapping(const scene::LegModel& leg, const WorkspaceMapping& workspace) : leg_(leg), workspace_(workspace)
+{
+    const ProbeFace centre = from_pose(leg_.probe_rest_pose(0.5f, 0.5f));
+    anchor_ = centre.position - workspace_.anchor_lift_mm * centre.beam();
+    // device x -> probe x (lateral), device y (up) -> probe -y (out of the skin), device z -> probe -z
+    // (x cross y: a rotation, 180 degrees about the probe's x)
+    device_to_probe_ = Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitX()));
+    to_world_ = centre.orientation * device_to_probe_;
+}
+
+ProbeFace ProbeMapping::face(const device::DeviceSample& s) const
+{
+    switch (s.control) {
+    case device::Control::surface: {
+        const device::SurfacePlacement& p = s.surface;
+        ProbeFace f = from_pose(leg_.probe_rest_pose(float(p.u), float(p.v)));
+        f.orientation = f.orientation * Eigen::AngleAxisd(p.fan_rad, Eigen::Vector3d::UnitX()) *
+                        Eigen::AngleAxisd(p.rock_rad, Eigen::Vector3d::UnitZ());
+        f.position += p.press_mm * f.beam();
+        return f;
+    }
+    case device::Control::workspace: {
+        ProbeFace f;
+        f.position = anchor_ + to_world_ * (workspace_.scale * s.position);
+        // the handle upright (identity) holds the probe as it rests on the middle of the patch
+        f.orientation = (to_world_ * s.orientation * device_to_probe_.conjugate()).normalized();
+        return f;
+    }
+    case device::Control::world: break;
+    }
+    ProbeFace f;
+    f.position = s.position;
+    f.orientation = s.orientation;
+    return f;
+}
+
+Eigen::Vector3d ProbeMapping::to_device(const Eigen::Vector3d& force_world, device::Control control) const
+{
+    return control == device::Control::workspace ? Eigen::Vector3d(to_world_.conjugate() * force_world) : force_world;
+}
+
+}  // namespace echosim::haptics
