@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 
@@ -13,6 +15,7 @@
 #include "app/echo_image_pass.hpp"
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
+#include "device/mouse_keyboard_device.hpp"
 #include "gpu/window.hpp"
 #include "render/image_panel_pass.hpp"
 #include "render/scene_pass.hpp"
@@ -58,6 +61,9 @@ int run_window(const RunArgs& args)
     }
 
     session::SessionOptions session_options{.clock = session::Clock::real_time};
+    // the probe moves through the haptic loop, from the window's mouse and keyboard
+    auto mouse = std::make_shared<device::MouseKeyboardDevice>();
+    session_options.device = mouse;
     VolumePair volumes;
     try {
         session_options.patient.which = echo::parse_case(args.case_name);
@@ -91,6 +97,7 @@ int run_window(const RunArgs& args)
         // the tissue runs in its own thread at 1 kHz; the window sends the probe and draws the
         // latest surface the physics published
         DefaultScene scene(session_options);
+        if (!scene.session.haptics_note().empty()) std::printf("echosim run: %s\n", scene.session.haptics_note().c_str());
         gpu::CommandPool commands(ctx);  // this (the main) thread's
         gpu::WindowPresenter presenter(commands, window);
         render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
@@ -103,7 +110,7 @@ int run_window(const RunArgs& args)
         EchoImagePass echo_pass(echo_image, panel, smooth);
         const gpu::FramePasses passes{&scene_pass, &echo_pass, &panel};
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
-                    "W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
+                    "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
                     ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
 
         std::unique_ptr<InputSource> input;
@@ -111,9 +118,9 @@ int run_window(const RunArgs& args)
             input = std::make_unique<ExerciseScript>(glm::ivec2(args.width, args.height));
         else
             input = std::make_unique<WindowInput>(window);
-        float u = 0.5f, v = 0.5f;  // the probe on the patch
-        double press = 0;          // [mm] into the skin
         double last_title = -1;
+        std::vector<device::DeviceEvent> events;
+        std::string device_status;  // what the title says of the device while it is away
         auto last = std::chrono::steady_clock::now();
         while (!window.should_close() && (args.frames == 0 || presented < args.frames)) {
             glfwPollEvents();
@@ -127,11 +134,17 @@ int run_window(const RunArgs& args)
             apply_to_window(in, window);
             scene.camera.orbit(in.orbit_yaw, in.orbit_pitch);
             scene.camera.zoom(in.zoom);
-            u = std::clamp(u + in.slide_u, 0.0f, 1.0f);
-            v = std::clamp(v + in.slide_v, 0.0f, 1.0f);
-            press = std::clamp(in.press_mm.value_or(press + in.press_change_mm), 0.0, 25.0);
-            scene.session.place_probe_on_patch(u, v, press);
+            mouse->feed(in.probe);
             scene.session.advance(dt);
+            events.clear();
+            scene.session.device()->events(events);
+            for (const device::DeviceEvent& e : events) {
+                std::printf("echosim run: %s: %s: %s\n", e.device.c_str(), device::to_string(e.kind), e.message.c_str());
+                if (e.kind == device::DeviceEvent::Kind::connected) device_status.clear();
+                if (e.kind == device::DeviceEvent::Kind::disconnected || e.kind == device::DeviceEvent::Kind::access_denied)
+                    device_status = e.device + " " + device::to_string(e.kind);
+                last_title = -1;
+            }
 
             const session::SessionView& state = scene.session.view();  // one physics step for the scene and the image
             scene_pass.set_view(scene.frame_view(state));
@@ -139,7 +152,10 @@ int run_window(const RunArgs& args)
             panel.set_rect(echo_panel_rect(presenter.extent(), scene.session.image_plane()));
             if (scene.session.time() - last_title > 0.2) {
                 char title[160];
-                std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", state.press_mm, state.probe_force_N);
+                if (device_status.empty())
+                    std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", state.press_mm, state.probe_force_N);
+                else
+                    std::snprintf(title, sizeof title, "echosim - %s: looking for it - probe %.1f N", device_status.c_str(), state.probe_force_N);
                 glfwSetWindowTitle(window.handle(), title);
                 last_title = scene.session.time();
             }
@@ -155,6 +171,12 @@ int run_window(const RunArgs& args)
         const physics::RunnerStats st = scene.session.physics_stats();
         std::printf("echosim run: physics stepped %lld times (%lld late), last probe force %.2f N\n", static_cast<long long>(st.steps),
                     static_cast<long long>(st.overruns), scene.session.view().probe_force_N);
+        if (haptics::HapticLoop* loop = scene.session.haptic_loop()) {
+            const haptics::PeriodStats h = loop->stats();
+            std::printf("echosim run: haptic loop ticked %lld times; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines\n",
+                        static_cast<long long>(loop->ticks()), h.error_quantile_ms(0.5), h.error_quantile_ms(0.99), h.max_error_ms,
+                        static_cast<long long>(h.missed_deadlines));
+        }
     }
     const double shown_s = std::chrono::duration<double>(last_shown - first_shown).count();
     std::printf("echosim run: presented %d frames, swapchain created %u times (%.1f frames/s)\n", presented, swapchains,

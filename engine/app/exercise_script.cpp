@@ -19,7 +19,7 @@ RunInput ExerciseScript::poll(float)
     default: break;
     }
     ++iteration_;
-    in.press_mm = 12.0 * std::min(1.0, iteration_ / 40.0);
+    in.probe.press_mm = 12.0 * std::min(1.0, iteration_ / 40.0);
     in.quit = iteration_ > 10000;
     return in;
 }

@@ -7,16 +7,17 @@
 
 #include <glm/vec2.hpp>
 
+#include "device/mouse_keyboard_device.hpp"
+
 namespace echosim::app {
 
 struct RunInput {
     // the camera
     float orbit_yaw = 0, orbit_pitch = 0;  // [rad]
     float zoom = 1;                        // distance factor (< 1 closer)
-    // the probe: a slide over the exam patch (fractions of its extent) and a press along the beam
-    float slide_u = 0, slide_v = 0;
-    double press_change_mm = 0;
-    std::optional<double> press_mm;  // an absolute press, which wins over the change [mm]
+    // the probe, for the mouse-and-keyboard device (device/mouse_keyboard_device.hpp): a slide
+    // over the exam patch (fractions of its extent), a tilt, and a press along the beam
+    device::SurfaceMotion probe;
     // the window
     bool toggle_fullscreen = false;
     std::optional<bool> fullscreen;

@@ -40,6 +40,7 @@ WindowInput::WindowInput(gpu::Window& window) : window_(window.handle())
         Pending& k = pending_of(win);
         if (key == GLFW_KEY_ESCAPE) k.quit = true;
         if (key == GLFW_KEY_F11 || (key == GLFW_KEY_F && !k.dragging)) k.toggle_fullscreen = true;
+        if (key == GLFW_KEY_R) k.level = true;
     });
 }
 
@@ -62,14 +63,20 @@ RunInput WindowInput::poll(float dt)
     // arrows slide the probe over the patch at 0.4 of the patch a second; right-drag: down the
     // screen moves the probe down the thigh, across moves it around
     const float step = 0.4f * dt;
-    in.slide_u = step * float(pressed(window_, GLFW_KEY_DOWN) - pressed(window_, GLFW_KEY_UP)) + 0.002f * float(k.probe_y);
-    in.slide_v = step * float(pressed(window_, GLFW_KEY_RIGHT) - pressed(window_, GLFW_KEY_LEFT)) + 0.002f * float(k.probe_x);
+    device::SurfaceMotion& m = in.probe;
+    m.du = step * float(pressed(window_, GLFW_KEY_DOWN) - pressed(window_, GLFW_KEY_UP)) + 0.002f * float(k.probe_y);
+    m.dv = step * float(pressed(window_, GLFW_KEY_RIGHT) - pressed(window_, GLFW_KEY_LEFT)) + 0.002f * float(k.probe_x);
+    // Q/E fan the image plane, A/D rock the probe heel to toe, at 30 degrees a second
+    const double tilt = 0.5236 * dt;
+    m.dfan_rad = tilt * double(pressed(window_, GLFW_KEY_E) - pressed(window_, GLFW_KEY_Q));
+    m.drock_rad = tilt * double(pressed(window_, GLFW_KEY_D) - pressed(window_, GLFW_KEY_A));
+    m.level = k.level;
     // W/S press the probe in and out at 15 mm/s; Shift+wheel 1 mm a notch
-    in.press_change_mm = 15.0 * dt * double(pressed(window_, GLFW_KEY_W) - pressed(window_, GLFW_KEY_S)) + k.press_scroll;
+    m.dpress_mm = 15.0 * dt * double(pressed(window_, GLFW_KEY_W) - pressed(window_, GLFW_KEY_S)) + k.press_scroll;
     in.toggle_fullscreen = k.toggle_fullscreen;
     in.quit = k.quit;
     k.drag_x = k.drag_y = k.probe_x = k.probe_y = k.scroll = k.press_scroll = 0;
-    k.toggle_fullscreen = k.quit = false;
+    k.toggle_fullscreen = k.quit = k.level = false;
     return in;
 }
 

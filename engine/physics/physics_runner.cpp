@@ -73,6 +73,7 @@ void PhysicsRunner::step_once()
     contact_out_.write_slot() = local_contact_model(*model_, state_);
     contact_out_.publish();
     steps_.fetch_add(1, std::memory_order_relaxed);
+    if (after_step_) after_step_(state_.steps);
 }
 
 void PhysicsRunner::step_to(double t)

@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -80,6 +81,10 @@ public:
     void start();
     void stop();
     RunnerStats stats() const { return {steps_.load(), overruns_.load(), refused_.load()}; }
+    // Runs in the stepping thread after each step is published, with the step's number: for
+    // instrumentation, and for the test that stalls the physics to show the haptic loop does not
+    // wait for it. Set it while no thread steps.
+    void set_after_step(std::function<void(std::int64_t step)> hook) { after_step_ = std::move(hook); }
 
     // the immutable model it steps (any thread), and the tissue model that was compiled
     const std::shared_ptr<const CompiledModel>& compiled() const { return model_; }
@@ -94,6 +99,7 @@ private:
     TripleBuffer<ProbeCommand> in_;
     TripleBuffer<SurfaceSnapshot> out_;
     TripleBuffer<LocalContactModel> contact_out_;
+    std::function<void(std::int64_t)> after_step_;
     std::thread thread_;
     std::atomic<bool> running_{false};
     std::atomic<std::int64_t> steps_{0}, overruns_{0}, refused_{0};

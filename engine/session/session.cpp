@@ -9,22 +9,34 @@ namespace echosim::session {
 
 Session::Session(const SessionOptions& options)
     : options_(options), compiled_(physics::compile_model(load_simulation_model(leg_, options.refine), options.physics)),
-      physics_(compiled_), deformer_(leg_, compiled_->tissue), indentation_(*compiled_), patch_(leg_.patch().rest.vertices)
+      physics_(compiled_), mapping_(leg_), deformer_(leg_, compiled_->tissue), indentation_(*compiled_), patch_(leg_.patch().rest.vertices)
 {
     echo::check_plane(options_.image);
     probe_.rest = leg_.probe_rest_pose(0.5f, 0.5f);
     view_.patch = &patch_;
     view_.echo = &echo_;
     view_.probe = probe_.face();
-    if (options_.clock == Clock::real_time) physics_.start();
+    if (options_.device) haptics_ = std::make_unique<haptics::HapticLoop>(physics_, options_.device, mapping_, options_.haptics);
+    if (options_.clock == Clock::real_time) {
+        physics_.start();
+        if (haptics_) {
+            haptics_->start();
+            haptics_note_ = haptics_->priority_note();
+        }
+    }
 }
 
 Session::~Session() { stop(); }
 
-void Session::stop() { physics_.stop(); }
+void Session::stop()
+{
+    if (haptics_) haptics_->stop();  // first: it commands the physics
+    physics_.stop();
+}
 
 void Session::place_probe(const ProbePlacement& placement)
 {
+    if (haptics_) throw std::logic_error("Session::place_probe: this session's probe is moved by its device (" + options_.device->capabilities().name + ")");
     if (!(placement.press_mm >= 0) || !std::isfinite(placement.press_mm))
         throw std::invalid_argument("probe press " + std::to_string(placement.press_mm) + " mm: must be finite and >= 0");
     // the physics would refuse it at the next advance, and the view would show a probe that is not simulated
@@ -41,6 +53,20 @@ void Session::place_probe_on_patch(float u, float v, double press_mm)
 void Session::advance(double dt)
 {
     if (!(dt > 0)) throw std::invalid_argument("Session::advance by " + std::to_string(dt) + " s: must be > 0");
+    if (haptics_) {
+        if (options_.clock == Clock::lock_step) {
+            const double end = time_ + dt, h = haptics_->period_s();
+            while (haptic_time_ + h <= end + 1e-9) {
+                haptic_time_ += h;
+                haptics_->tick(haptic_time_);
+                physics_.step_to(haptic_time_);
+            }
+            time_ = end;
+        } else {
+            time_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        }
+        return;
+    }
     // the press speed along the beam is what the contact's damping feels; sliding is left to the
     // contact's own velocity estimate
     const Pose face = probe_.face();
@@ -95,7 +121,20 @@ const SessionView& Session::view()
         deformer_.apply(snap.positions, patch_);
         shown_step_ = snap.step;
     }
-    view_.probe = probe_.face();
+    double press_mm = probe_.press_mm;
+    if (haptics_) {
+        const haptics::HapticSample& h = haptics_->latest();
+        const Eigen::Vector3d& p = h.face.position;
+        const Eigen::Quaterniond& q = h.face.orientation;
+        view_.probe = Pose{glm::vec3(float(p.x()), float(p.y()), float(p.z())), glm::quat(float(q.w()), float(q.x()), float(q.y()), float(q.z()))};
+        // a device that places the probe over the skin says how far it presses; the others do not
+        // (the image then takes the press from the tissue alone)
+        press_mm = h.device.control == device::Control::surface ? h.device.surface.press_mm : 0.0;
+        view_.haptic_force_N = h.force.along_N;
+        view_.device_connected = h.device.connected;
+    } else {
+        view_.probe = probe_.face();
+    }
     // the image's input from the same snapshot; before the first step the skin lies at rest
     echo_.face = view_.probe;
     echo_.time_s = snap.time;
@@ -105,8 +144,8 @@ const SessionView& Session::view()
     if (snap.positions.empty() || snap.contacts == 0)
         echo_.columns.clear();
     else
-        indentation_.compute(view_.probe, probe_.press_mm, snap.positions, options_.image, echo_.columns);
-    view_.press_mm = probe_.press_mm;
+        indentation_.compute(view_.probe, press_mm, snap.positions, options_.image, echo_.columns);
+    view_.press_mm = press_mm;
     view_.probe_force_N = snap.probe_force_N;
     view_.time_s = snap.time;
     view_.resets = snap.resets;

@@ -17,7 +17,8 @@
 //     reports, so the image and the force always show the same moment. The image pipeline itself
 //     (engine/image, on the GPU, or the CPU twin) draws it, as the scene pass draws the patch; the
 //     volumes it reads are the caller's.
-// The input and haptic devices (issue 11) join it here.
+//   - optionally a device (SessionOptions::device) and the haptic loop that reads it: then the
+//     device, not place_probe, moves the probe (below).
 //
 // Threads and hand-offs. One driver thread (the window's main thread, a headless command, a test)
 // calls every member. The probe command path: the driver sets the probe (place_probe), and
@@ -26,6 +27,13 @@
 // Its consumer is the physics thread (real time) or advance() itself (lock-step). The surface comes
 // back the same way: the physics publishes a snapshot after every step, and view() reads the newest
 // (the driver thread is its one reader). Nothing else crosses threads.
+//
+// With a device, the haptic loop (haptics/haptic_loop.hpp) is the probe's one commander instead: in
+// real time on its own 1 kHz thread, in lock-step ticked by advance() at its rate, between the
+// physics steps. The driver then feeds the device (the window's mouse and keyboard) or leaves it to
+// its own thread (HID), and reads the loop's latest tick in view(): the probe where the device put
+// it and the force the hand feels, beside the physics snapshot. place_probe and the press helpers
+// are for sessions without a device.
 #pragma once
 
 #include <chrono>
@@ -33,6 +41,9 @@
 #include <vector>
 
 #include "core/pose.hpp"
+#include "device/device.hpp"
+#include "haptics/haptic_loop.hpp"
+#include "haptics/probe_mapping.hpp"
 #include "physics/compiled_model.hpp"
 #include "physics/physics_options.hpp"
 #include "physics/physics_runner.hpp"
@@ -56,6 +67,9 @@ struct SessionOptions {
     physics::PhysicsOptions physics;
     echo::ImagePlane image;   // the echographic image's plane and pixels
     echo::PatientCase patient;
+    // the device that moves the probe through the haptic loop; none: the driver places it
+    std::shared_ptr<device::Device> device;
+    haptics::HapticOptions haptics;
 };
 
 // The probe the driver holds: resting on the skin at `rest` (the face on the skin, the beam along
@@ -74,6 +88,10 @@ struct SessionView {
     double probe_force_N = 0; // the tissue's push on the probe along its axis (latest step)
     double time_s = 0;        // simulated time of the latest step
     int resets = 0;           // times the physics recovered from an unstable state
+    // with a device: the force the haptic loop rendered at its latest tick (what the hand feels,
+    // within the device's limits) and whether the device is there
+    double haptic_force_N = 0;
+    bool device_connected = true;
     // the echographic image's input at the same step: the pressed face, the skin under it per
     // image column (none while the probe does not touch the skin), the pressure of probe_force_N
     // over the face, the time
@@ -104,9 +122,16 @@ public:
     // The probe on the exam patch at (u, v) in [0,1]^2, pressed `press_mm`.
     void place_probe_on_patch(float u, float v, double press_mm);
 
+    // The device moving the probe (null without one), its haptic loop, and the loop's note on its
+    // priority ("" when it runs real-time, or with no loop thread).
+    device::Device* device() const { return options_.device.get(); }
+    haptics::HapticLoop* haptic_loop() const { return haptics_.get(); }
+    const std::string& haptics_note() const { return haptics_note_; }
+
     // Sends the probe to the physics, its press speed taken over `dt` [s] (the frame's duration, > 0),
     // and moves the clock on: in lock-step by `dt`, stepping the physics to the new time here; in
-    // real time to the wall clock.
+    // real time to the wall clock. With a device, lock-step ticks the haptic loop every period up to
+    // the new time, stepping the physics in between; real time leaves both to their threads.
     void advance(double dt);
     // Lock-step: presses the probe resting at `rest` in to `press_mm` over 0.1 s, then holds it
     // until `settle_s` of simulated time, so the tissue settles under it.
@@ -130,6 +155,10 @@ private:
     scene::LegModel leg_;
     std::shared_ptr<const physics::CompiledModel> compiled_;
     physics::PhysicsRunner physics_;
+    haptics::ProbeMapping mapping_;
+    std::unique_ptr<haptics::HapticLoop> haptics_;  // with a device
+    std::string haptics_note_;
+    double haptic_time_ = 0;  // lock-step: the last tick's time [s]
     PatchDeformer deformer_;
     IndentationProfile indentation_;
     ProbePlacement probe_;
