@@ -101,6 +101,13 @@ struct SliceArgs {
 };
 int run_slice(const SliceArgs& args);
 
+struct HapticsDemoArgs {
+    std::filesystem::path out;
+    double physics_hz = 100.0;
+    bool json = false;
+};
+int run_haptics_demo(const HapticsDemoArgs& args);
+
 struct BenchArgs {
     GpuArgs gpu;
     std::vector<std::string> names;  // empty: all

@@ -111,6 +111,14 @@ int main(int argc, char** argv)
     slice_cmd->add_option("--time", slice.time_s, "moment of the heart cycle [s from a diastole]")->check(CLI::Range(0.0, 1e6));
     add_gpu_options(slice_cmd, slice.gpu);
 
+    HapticsDemoArgs demo;
+    auto* demo_cmd = app.add_subcommand("haptics-demo",
+                                        "the paper's Fig. 8: the force while the probe slides across the skin, with and without the local contact model");
+    demo_cmd->add_option("--out", demo.out, "folder for force_log.csv, force.png and summary.json")->required();
+    demo_cmd->add_option("--physics-hz", demo.physics_hz, "the physics' rate (the paper's: 100 Hz); the haptic loop runs at 1 kHz")
+        ->check(CLI::Range(10.0, 1000.0));
+    demo_cmd->add_flag("--json", demo.json, "print the summary as JSON on stdout");
+
     CLI11_PARSE(app, argc, argv);
 
     const char* which = app.get_subcommands().front()->get_name().c_str();
@@ -123,6 +131,7 @@ int main(int argc, char** argv)
         if (fit_cmd->parsed()) return run_fit(fit);
         if (phantom_cmd->parsed()) return run_phantom(phantom);
         if (reconstruct_cmd->parsed()) return run_reconstruct(reconstruct);
+        if (demo_cmd->parsed()) return run_haptics_demo(demo);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;

@@ -29,6 +29,20 @@ HapticForce local_model_force(const physics::LocalContactModel& m, const Eigen::
     return along_axis(m, renderable.force_at(face, velocity), limits, renderable.stiffness < m.stiffness || renderable.damping < m.damping);
 }
 
+void RefreshBlend::refresh(double t_s, double before_N, double after_N, double period_s)
+{
+    offset_N = apply(before_N, t_s) - after_N;  // a refresh during a fade continues from where it is
+    since_s = t_s;
+    over_s = std::clamp(period_s, 1e-3, 0.05);
+}
+
+double RefreshBlend::apply(double force_N, double t_s) const
+{
+    if (over_s <= 0.0) return force_N;
+    const double w = std::max(0.0, 1.0 - (t_s - since_s) / over_s);
+    return std::max(0.0, force_N + w * offset_N);
+}
+
 HapticForce held_physics_force(const physics::LocalContactModel& m, const ForceLimits& limits)
 {
     return along_axis(m, m.in_contact ? m.force : 0.0, limits, false);

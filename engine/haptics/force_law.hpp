@@ -33,6 +33,22 @@ struct HapticForce {
 // stiffness and damping first cut to the device's, the force then to its largest.
 HapticForce local_model_force(const physics::LocalContactModel& m, const Eigen::Vector3d& face, const Eigen::Vector3d& velocity,
                               const ForceLimits& limits);
+// A new local model arrives with each physics step, and what it says at the probe's pose differs
+// from what the last one said (the physics saw more than a plane can predict: the probe sliding
+// onto stiffer tissue, a contact patch that grew). Rendered as is, that difference would be a step
+// in the force every physics period, felt as the trembling the local model is there to remove. So
+// at each refresh the difference is kept as an offset that fades out linearly over one physics
+// period (the time since the previous refresh): the force stays continuous, and follows the new
+// model fully one period later. Plain data; the haptic thread's own.
+struct RefreshBlend {
+    double offset_N = 0;
+    double since_s = 0;  // the refresh's time
+    double over_s = 0;   // the fade's length
+    // at time t the model changed: it gave `before_N` and now gives `after_N` at the probe's pose
+    void refresh(double t_s, double before_N, double after_N, double period_s);
+    double apply(double force_N, double t_s) const;
+};
+
 // Without it (the paper's comparison): the force of the last physics step, held until the next.
 HapticForce held_physics_force(const physics::LocalContactModel& m, const ForceLimits& limits);
 

@@ -68,7 +68,24 @@ void HapticLoop::tick(double t_s)
     last_position_ = s.face.position;
 
     const physics::LocalContactModel& model = physics_.latest_contact();
-    s.force = options_.local_model ? local_model_force(model, s.face.position, s.velocity, limits_) : held_physics_force(model, limits_);
+    if (options_.local_model) {
+        s.force = local_model_force(model, s.face.position, s.velocity, limits_);
+        s.model_force_N = s.force.along_N;
+        if (!have_model_ || model.step != model_.step) {
+            if (have_model_) {
+                const double before = local_model_force(model_, s.face.position, s.velocity, limits_).along_N;
+                blend_.refresh(t_s, before, s.force.along_N, model.time - model_.time);
+            }
+            model_ = model;
+            have_model_ = true;
+        }
+        const double blended = std::min(blend_.apply(s.force.along_N, t_s), limits_.max_force_N > 0 ? limits_.max_force_N : 1e300);
+        s.force.along_N = blended;
+        s.force.world_N = -blended * model_.axis;
+    } else {
+        s.force = held_physics_force(model, limits_);
+        s.model_force_N = s.force.along_N;
+    }
     s.physics_force_N = model.in_contact ? model.force : 0.0;
     s.physics_step = model.step;
     device_->write_force(mapping_.to_device(s.force.world_N, s.device.control));

@@ -44,6 +44,7 @@ struct HapticSample {
     ProbeFace face;                   // where the device put the probe
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [mm/s], low-passed
     HapticForce force;                // rendered (and sent to the device)
+    double model_force_N = 0;         // the latest local model at this pose, before the refresh blend
     double physics_force_N = 0;       // the last physics step's own force along the axis
     std::int64_t physics_step = 0;    // the step the local model came from
     device::DeviceSample device;      // the device's sample this tick
@@ -89,6 +90,9 @@ private:
     bool have_last_ = false;
     double last_t_ = 0;
     Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();
+    physics::LocalContactModel model_;  // the model being rendered (a copy: the next read may replace it)
+    bool have_model_ = false;
+    RefreshBlend blend_;
     PeriodStats stats_;
     // hand-offs
     TripleBuffer<HapticSample> out_;

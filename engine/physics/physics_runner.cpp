@@ -18,6 +18,8 @@ SurfaceSnapshot prototype(const CompiledModel& model)
 const std::shared_ptr<const CompiledModel>& checked(const std::shared_ptr<const CompiledModel>& model)
 {
     if (!model) throw std::invalid_argument("PhysicsRunner: no compiled model");
+    if (model->options.steps_per_publish < 1)
+        throw std::invalid_argument("PhysicsRunner: steps_per_publish " + std::to_string(model->options.steps_per_publish) + ": must be >= 1");
     return model;
 }
 
@@ -57,9 +59,10 @@ bool PhysicsRunner::command(const ProbeCommand& c)
 
 void PhysicsRunner::step_once()
 {
-    const ProbeCommand& c = in_.read();
-    state_.probe = c;
-    step(*model_, state_, team_);
+    for (int i = 0; i < model_->options.steps_per_publish; ++i) {
+        state_.probe = in_.read();
+        step(*model_, state_, team_);
+    }
 
     SurfaceSnapshot& s = out_.write_slot();
     s.time = state_.time;
@@ -79,7 +82,8 @@ void PhysicsRunner::step_once()
 void PhysicsRunner::step_to(double t)
 {
     if (running_) throw std::logic_error("PhysicsRunner::step_to while the physics thread runs");
-    while (state_.time + 0.5 * model_->options.time_step < t) step_once();
+    const double period = model_->options.time_step * model_->options.steps_per_publish;
+    while (state_.time + 0.5 * period < t) step_once();
 }
 
 void PhysicsRunner::start()
@@ -87,7 +91,7 @@ void PhysicsRunner::start()
     if (running_.exchange(true)) return;
     thread_ = std::thread([this] {
         using clock = std::chrono::steady_clock;
-        const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(model_->options.time_step));
+        const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(model_->options.time_step * model_->options.steps_per_publish));
         auto due = clock::now();
         while (running_.load(std::memory_order_relaxed)) {
             step_once();
