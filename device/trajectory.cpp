@@ -65,7 +65,9 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& source)
         const double norm = r.orientation.norm();
         if (std::abs(norm - 1.0) > 0.01)
             throw std::invalid_argument(where + ": qw,qx,qy,qz is not a unit quaternion (norm " + std::to_string(norm) + ")");
-        if (norm != 1.0) r.orientation.normalize();
+        // a quaternion written to 17 digits reads back within an ulp or two of unit length: left as
+        // written, so a trajectory plays exactly what its file says
+        if (std::abs(norm - 1.0) > 1e-12) r.orientation.normalize();
         if (!traj.rows_.empty() && !(r.t_s > traj.rows_.back().t_s))
             throw std::invalid_argument(where + ": t_s " + std::to_string(r.t_s) + " does not increase (the row before is at " +
                                         std::to_string(traj.rows_.back().t_s) + " s)");

@@ -23,7 +23,7 @@ class Trajectory {
 public:
     // Throws std::invalid_argument naming `source`, the line and the field when the header is not
     // the documented one, a field is missing or not a finite number, a quaternion is not of unit
-    // length (within 1 %; it is then renormalised), the times do not increase, or there are no rows.
+    // length (within 1 %; beyond 1e-12 it is renormalised), the times do not increase, or there are no rows.
     static Trajectory parse(const std::string& text, const std::string& source);
     static Trajectory load(const std::filesystem::path& file);
 

@@ -11,6 +11,7 @@ LocalContactModel local_contact_model(const CompiledModel& model, TissueState& s
     m.axis = s.contacts.axis;
     m.face = s.probe.position;
     m.force = s.contacts.total_force;
+    m.speed = s.probe.velocity.dot(m.axis);
     m.in_contact = !s.contacts.contacts.empty();
     if (!m.in_contact) return m;
 

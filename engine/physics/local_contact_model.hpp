@@ -2,8 +2,10 @@
 // Balaniuk's buffer model, the skin under the probe as a plane that pushes back with a local
 // stiffness and damping, so the 1 kHz haptic loop can render a smooth force between (and beyond)
 // the physics steps from the probe's own pose:
-//     F(face', v) = max(0, force + stiffness (axis . (face' - face)) + damping (axis . v))
-// with face' the probe's face centre now and v its velocity [mm/s], along the probe axis.
+//     F(face', v) = max(0, force + stiffness (axis . (face' - face)) + damping (axis . v - speed))
+// with face' the probe's face centre now and v its velocity [mm/s], along the probe axis. The
+// step's force already holds the damping at the speed the probe had then (`speed`): only a change
+// of speed adds to it.
 //
 // The stiffness is the quasi-static response to the probe advancing along its axis: at each skin
 // node under the probe, the penalty contact in series with the tissue column beneath (its
@@ -31,12 +33,13 @@ struct LocalContactModel {
     double force = 0;      // the tissue's push on the probe along the axis [N]
     double stiffness = 0;  // d force / d advance along the axis [N/mm]
     double damping = 0;    // d force / d speed along the axis [N s/mm]
+    double speed = 0;      // the probe's speed along the axis at that step [mm/s]
 
     // The force the model gives for the face at `face_now` moving at `velocity` [N].
     double force_at(const Eigen::Vector3d& face_now, const Eigen::Vector3d& velocity) const
     {
         if (!in_contact) return 0.0;
-        const double f = force + stiffness * axis.dot(face_now - face) + damping * axis.dot(velocity);
+        const double f = force + stiffness * axis.dot(face_now - face) + damping * (axis.dot(velocity) - speed);
         return f > 0.0 ? f : 0.0;
     }
 };

@@ -14,19 +14,7 @@
 #include "physics/forces.hpp"
 #include "physics/physics_fixture.hpp"
 #include "physics/simulation.hpp"
-
-// Every allocation in this test binary is counted, so a test can assert that a step makes none.
-namespace {
-std::atomic<long> g_allocations{0};
-}
-void* operator new(std::size_t n)
-{
-    ++g_allocations;
-    if (void* p = std::malloc(n ? n : 1)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "counting_new.hpp"
 
 namespace echosim::physics {
 namespace {
@@ -207,9 +195,9 @@ TEST(Physics, StepAllocatesNothing)
         Simulation sim(compile_model(m, o));
         place_probe(sim.state, test::leg().probe_rest_pose(0.5f, 0.5f), 5.0);
         sim.step();  // first contact sizes nothing new either, but keep it out of the count
-        const long before = g_allocations.load();
+        const long before = test::allocations();
         for (int i = 0; i < 50; ++i) step(*sim.model, sim.state, *sim.team);
-        EXPECT_EQ(g_allocations.load() - before, 0) << threads << " thread(s)";
+        EXPECT_EQ(test::allocations() - before, 0) << threads << " thread(s)";
         EXPECT_GT(sim.state.last.contacts, 0);
     }
 }
