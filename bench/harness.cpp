@@ -27,6 +27,8 @@ const std::vector<Suite>& suites()
         {"physics", "tissue dynamics steps with the probe pressing and sliding (one core; and all, from 2500 nodes)", register_physics, false},
         {"reconstruct", "freehand reconstruction of 300 tracked 640x480 frames", register_reconstruct, false},
         {"slice", "echographic image (deform, slice, post) of a pressed frame, 0.3 and 0.1 mm volumes, frames/s", register_slice, true},
+        {"haptics", "the 1 kHz haptic loop's period error over 30 s with the physics and headless rendering running; one force computation",
+         register_haptics, true},
     };
     return all;
 }

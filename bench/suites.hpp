@@ -12,5 +12,6 @@ std::shared_ptr<void> register_fit(const SuiteOptions& options);
 std::shared_ptr<void> register_physics(const SuiteOptions& options);
 std::shared_ptr<void> register_reconstruct(const SuiteOptions& options);
 std::shared_ptr<void> register_slice(const SuiteOptions& options);
+std::shared_ptr<void> register_haptics(const SuiteOptions& options);
 
 }  // namespace echosim::bench
