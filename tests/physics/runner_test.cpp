@@ -11,7 +11,7 @@
 
 #include "physics/physics_fixture.hpp"
 #include "physics/simulation.hpp"
-#include "physics/triple_buffer.hpp"
+#include "core/triple_buffer.hpp"
 
 namespace echosim::physics {
 namespace {
