@@ -110,4 +110,9 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct DevicesArgs {
+    bool json = false;  // a JSON array instead of the text
+};
+int run_devices(const DevicesArgs& args);
+
 }  // namespace echosim::app

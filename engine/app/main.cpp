@@ -111,6 +111,10 @@ int main(int argc, char** argv)
     slice_cmd->add_option("--time", slice.time_s, "moment of the heart cycle [s from a diastole]")->check(CLI::Range(0.0, 1e6));
     add_gpu_options(slice_cmd, slice.gpu);
 
+    DevicesArgs devices;
+    auto* devices_cmd = app.add_subcommand("devices", "list the input and haptic devices echosim can drive, and whether each is ready");
+    devices_cmd->add_flag("--json", devices.json, "print them as a JSON array");
+
     CLI11_PARSE(app, argc, argv);
 
     const char* which = app.get_subcommands().front()->get_name().c_str();
@@ -123,6 +127,7 @@ int main(int argc, char** argv)
         if (fit_cmd->parsed()) return run_fit(fit);
         if (phantom_cmd->parsed()) return run_phantom(phantom);
         if (reconstruct_cmd->parsed()) return run_reconstruct(reconstruct);
+        if (devices_cmd->parsed()) return run_devices(devices);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;
