@@ -16,6 +16,9 @@
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
 #include "device/mouse_keyboard_device.hpp"
+#include "device/null_device.hpp"
+#include "device/scripted_device.hpp"
+#include "device/spacemouse_device.hpp"
 #include "gpu/window.hpp"
 #include "render/image_panel_pass.hpp"
 #include "render/scene_pass.hpp"
@@ -61,9 +64,22 @@ int run_window(const RunArgs& args)
     }
 
     session::SessionOptions session_options{.clock = session::Clock::real_time};
-    // the probe moves through the haptic loop, from the window's mouse and keyboard
+    // the probe moves through the haptic loop: from the window's mouse and keyboard, a SpaceMouse,
+    // a scripted trajectory, or nothing
     auto mouse = std::make_shared<device::MouseKeyboardDevice>();
-    session_options.device = mouse;
+    try {
+        if (!args.trajectory.empty())
+            session_options.device = std::make_shared<device::ScriptedDevice>(device::Trajectory::load(args.trajectory), args.trajectory.string());
+        else if (args.device == "spacemouse")
+            session_options.device = std::make_shared<device::SpaceMouseDevice>();
+        else if (args.device == "null")
+            session_options.device = std::make_shared<device::NullDevice>();
+        else
+            session_options.device = mouse;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "echosim run: %s\n", e.what());
+        return kExitBadInput;
+    }
     VolumePair volumes;
     try {
         session_options.patient.which = echo::parse_case(args.case_name);
@@ -134,7 +150,7 @@ int run_window(const RunArgs& args)
             apply_to_window(in, window);
             scene.camera.orbit(in.orbit_yaw, in.orbit_pitch);
             scene.camera.zoom(in.zoom);
-            mouse->feed(in.probe);
+            mouse->feed(in.probe);  // read only when the mouse and keyboard are the session's device
             scene.session.advance(dt);
             events.clear();
             scene.session.device()->events(events);

@@ -45,6 +45,8 @@ struct RunArgs {
     std::filesystem::path volume;  // empty: the case's default volume (made once, cached)
     std::filesystem::path labels;  // with --volume: its tissue labels (empty: linear deformation)
     std::string case_name = "healthy";
+    std::string device = "mouse";      // mouse, spacemouse or null
+    std::filesystem::path trajectory;  // a scripted trajectory CSV instead of a device
 };
 int run_window(const RunArgs& args);
 
@@ -116,5 +118,10 @@ struct BenchArgs {
     std::string filter = ".";  // Google Benchmark's filter over the row names
 };
 int run_bench(const BenchArgs& args);
+
+struct DevicesArgs {
+    bool json = false;  // a JSON array instead of the text
+};
+int run_devices(const DevicesArgs& args);
 
 }  // namespace echosim::app

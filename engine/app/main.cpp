@@ -45,6 +45,9 @@ int main(int argc, char** argv)
     run_cmd->add_option("--volume", run.volume, "echographic volume (NRRD, uint8); default: the case's, made once and cached");
     run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD, uint8); without: linear deformation");
     run_cmd->add_option("--case", run.case_name, "healthy, dvt-acute or dvt-chronic");
+    run_cmd->add_option("--device", run.device, "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), null")
+        ->check(CLI::IsMember({"mouse", "spacemouse", "null"}));
+    run_cmd->add_option("--trajectory", run.trajectory, "play this trajectory CSV (t_s,x_mm,y_mm,z_mm,qw,qx,qy,qz) instead of a device");
     add_gpu_options(run_cmd, run.gpu);
 
     MeasureArgs measure;
@@ -118,6 +121,9 @@ int main(int argc, char** argv)
     demo_cmd->add_option("--physics-hz", demo.physics_hz, "the physics' rate (the paper's: 100 Hz); the haptic loop runs at 1 kHz")
         ->check(CLI::Range(10.0, 1000.0));
     demo_cmd->add_flag("--json", demo.json, "print the summary as JSON on stdout");
+    DevicesArgs devices;
+    auto* devices_cmd = app.add_subcommand("devices", "list the input and haptic devices echosim can drive, and whether each is ready");
+    devices_cmd->add_flag("--json", devices.json, "print them as a JSON array");
 
     CLI11_PARSE(app, argc, argv);
 
@@ -132,6 +138,7 @@ int main(int argc, char** argv)
         if (phantom_cmd->parsed()) return run_phantom(phantom);
         if (reconstruct_cmd->parsed()) return run_reconstruct(reconstruct);
         if (demo_cmd->parsed()) return run_haptics_demo(demo);
+        if (devices_cmd->parsed()) return run_devices(devices);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;
