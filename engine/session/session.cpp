@@ -122,8 +122,10 @@ const SessionView& Session::view()
         shown_step_ = snap.step;
     }
     double press_mm = probe_.press_mm;
-    if (haptics_) {
-        const haptics::HapticSample& h = haptics_->latest();
+    const haptics::HapticSample* ticked = haptics_ ? &haptics_->latest() : nullptr;
+    if (ticked && ticked->tick == 0) ticked = nullptr;  // before the loop's first tick the probe rests where it starts
+    if (ticked) {
+        const haptics::HapticSample& h = *ticked;
         const Eigen::Vector3d& p = h.face.position;
         const Eigen::Quaterniond& q = h.face.orientation;
         view_.probe = Pose{glm::vec3(float(p.x()), float(p.y()), float(p.z())), glm::quat(float(q.w()), float(q.x()), float(q.y()), float(q.z()))};
