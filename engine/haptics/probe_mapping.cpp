@@ -2,15 +2,16 @@
 
 #include <numbers>
 
+#include "contact/probe_contact.hpp"
+
 namespace echosim::haptics {
 namespace {
 
+// the contact's own conversion of a pose, renormalised in double
 ProbeFace from_pose(const Pose& p)
 {
-    ProbeFace f;
-    f.position = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
-    f.orientation = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z).normalized();
-    return f;
+    const contact::ProbeState s = contact::probe_at(p);
+    return {s.position, s.orientation.normalized()};
 }
 
 }  // namespace
