@@ -1,0 +1,64 @@
+// The PLUS toolkit's device-set configuration file (PlusDeviceSet*.xml), the parts a volume
+// reconstruction needs: the transforms of `CoordinateDefinitions` (the probe calibration
+// ImageToProbe, usually) and the `VolumeReconstruction` element's settings, as PLUS's
+// VolumeReconstructor reads them. Everything else in the file (devices, data collection, fCal's
+// settings) belongs to acquisition and is not looked at; what the VolumeReconstruction element
+// asks for that echosim does not do is listed in `warnings`, each naming the line and attribute,
+// never silently dropped. Errors (PlusConfigError) name the file, the line and the attribute.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace echosim::io {
+
+class PlusConfigError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class PlusInterpolation { nearest_neighbor, linear };
+enum class PlusCompounding { mean, maximum, latest };
+
+// The VolumeReconstruction element; what the file leaves out stays empty, for the caller's own
+// defaults (and command-line options) to fill.
+struct PlusReconstructionSettings {
+    std::optional<glm::dvec3> output_spacing;              // [mm]
+    std::optional<glm::dvec3> output_origin;               // centre of voxel (0, 0, 0) in the reference frame [mm]
+    std::optional<std::array<int, 6>> output_extent;       // first and last voxel index on each axis
+    std::optional<std::array<int, 2>> clip_origin;         // [pixels] of the MF-oriented image
+    std::optional<std::array<int, 2>> clip_size;           // [pixels]
+    std::optional<PlusInterpolation> interpolation;
+    std::optional<PlusCompounding> compounding;
+    std::optional<bool> fill_holes;
+    std::optional<double> pixel_rejection_threshold;       // pixels below it are not pasted
+    std::string image_frame = "Image";
+    std::string reference_frame = "Reference";
+    int line = 0;                                          // where the element is, for messages
+};
+
+struct PlusConfigTransform {
+    std::string from, to;
+    glm::dmat4 matrix{1.0};
+    bool valid = true;  // Valid="FALSE" in the file
+    int line = 0;
+};
+
+struct PlusConfig {
+    std::vector<PlusConfigTransform> transforms;
+    std::optional<PlusReconstructionSettings> reconstruction;
+    std::vector<std::string> warnings;  // "FILE:LINE: VolumeReconstruction: FanAnglesDeg ... not supported: ..."
+};
+
+// Throws PlusConfigError naming the file (and line and attribute) when it is not a regular file,
+// is over 64 MiB, is not well-formed XML, or a value is malformed.
+PlusConfig read_plus_config(const std::filesystem::path& path);
+
+}  // namespace echosim::io

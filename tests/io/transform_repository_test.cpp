@@ -1,0 +1,111 @@
+#include "io/transform_repository.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
+
+#include <gtest/gtest.h>
+
+namespace echosim::io {
+namespace {
+
+glm::dmat4 rigid(double angle_rad, const glm::dvec3& axis, const glm::dvec3& move)
+{
+    return glm::translate(glm::dmat4(1.0), move) * glm::rotate(glm::dmat4(1.0), angle_rad, axis);
+}
+
+void expect_near(const glm::dmat4& a, const glm::dmat4& b)
+{
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], 1e-9) << "entry row " << r << " column " << c;
+}
+
+TEST(TransformName, SplitsAtTheOneToBeforeACapital)
+{
+    EXPECT_EQ(split_transform_name("ProbeToTracker"), (std::pair<std::string, std::string>{"Probe", "Tracker"}));
+    EXPECT_EQ(split_transform_name("StylusTipToStylus"), (std::pair<std::string, std::string>{"StylusTip", "Stylus"}));
+    EXPECT_EQ(split_transform_name("TorsoToReference"), (std::pair<std::string, std::string>{"Torso", "Reference"}));
+    EXPECT_FALSE(split_transform_name("Probe"));                 // no "To"
+    EXPECT_FALSE(split_transform_name("ToTracker"));             // nothing before it
+    EXPECT_FALSE(split_transform_name("AToBToC"));               // ambiguous
+    EXPECT_FALSE(split_transform_name("Protocol"));              // "to" without a capital after
+}
+
+// The chain PLUS builds for a recording: calibration from the configuration, two tracker transforms
+// per frame; the expectation is the product written out by hand.
+TEST(TransformRepository, ChainsThroughProductsAndInverses)
+{
+    const glm::dmat4 image_to_probe = rigid(0.3, {0, 0, 1}, {-20, 5, 3}) * glm::scale(glm::dmat4(1.0), glm::dvec3(0.1, 0.12, 1));
+    const glm::dmat4 probe_to_tracker = rigid(1.1, {1, 2, 0.5}, {100, -40, 250});
+    const glm::dmat4 reference_to_tracker = rigid(-0.7, {0.2, 1, 0}, {80, 10, 300});
+    TransformRepository repo;
+    repo.set("Image", "Probe", image_to_probe);
+    repo.set("Probe", "Tracker", probe_to_tracker);
+    repo.set("Reference", "Tracker", reference_to_tracker);
+    repo.set("Stylus", "Tracker", rigid(0.5, {0, 1, 0}, {1, 2, 3}));  // another tool: not on the way
+
+    const FrameTransform t = repo.get("Image", "Reference");
+    expect_near(t.matrix, glm::inverse(reference_to_tracker) * probe_to_tracker * image_to_probe);
+    EXPECT_TRUE(t.valid);
+    // and back: the inverse
+    expect_near(repo.get("Reference", "Image").matrix, glm::inverse(t.matrix));
+    // a frame to itself is the identity
+    expect_near(repo.get("Probe", "Probe").matrix, glm::dmat4(1.0));
+}
+
+TEST(TransformRepository, AnInvalidLinkMakesTheChainInvalid)
+{
+    TransformRepository repo;
+    repo.set("Image", "Probe", glm::dmat4(1.0));
+    repo.set("Probe", "Tracker", rigid(0.1, {0, 0, 1}, {1, 2, 3}), false);
+    repo.set("Reference", "Tracker", glm::dmat4(1.0));
+    EXPECT_FALSE(repo.get("Image", "Reference").valid);
+    EXPECT_TRUE(repo.get("Reference", "Tracker").valid);
+}
+
+TEST(TransformRepository, SettingTheOtherWayRoundReplaces)
+{
+    TransformRepository repo;
+    repo.set("Probe", "Tracker", rigid(0.1, {0, 0, 1}, {1, 2, 3}));
+    const glm::dmat4 tracker_to_probe = rigid(0.4, {1, 0, 0}, {-5, 0, 7});
+    repo.set("Tracker", "Probe", tracker_to_probe);
+    EXPECT_EQ(repo.names().size(), 1u);
+    expect_near(repo.get("Probe", "Tracker").matrix, glm::inverse(tracker_to_probe));
+}
+
+TEST(TransformRepository, NoChainSaysWhatIsMissing)
+{
+    TransformRepository repo;
+    repo.set("Probe", "Tracker", glm::dmat4(1.0));
+    repo.set("Reference", "Tracker", glm::dmat4(1.0));
+    EXPECT_FALSE(repo.find("Image", "Reference"));
+    try {
+        repo.get("Image", "Reference");
+        FAIL() << "no chain, yet an answer";
+    } catch (const TransformError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("no chain of transforms from Image to Reference"), std::string::npos) << m;
+        EXPECT_NE(m.find("Image reaches {Image}"), std::string::npos) << m;
+        EXPECT_NE(m.find("Reference reaches {Reference, Tracker, Probe}"), std::string::npos) << m;
+        EXPECT_NE(m.find("ImageToProbe"), std::string::npos) << m;  // the calibration PLUS keeps in the configuration
+    }
+}
+
+TEST(TransformRepository, RefusesWhatIsNotATransform)
+{
+    TransformRepository repo;
+    glm::dmat4 projective(1.0);
+    projective[0][3] = 0.5;
+    EXPECT_THROW(repo.set("A", "B", projective), TransformError);
+    glm::dmat4 nan(1.0);
+    nan[3][0] = std::nan("");
+    EXPECT_THROW(repo.set("A", "B", nan), TransformError);
+    EXPECT_THROW(repo.set("A", "A", glm::dmat4(1.0)), TransformError);
+    glm::dmat4 flat(1.0);
+    flat[2][2] = 0;  // singular: usable forward, not backward
+    repo.set("A", "B", flat);
+    EXPECT_NO_THROW(repo.get("A", "B"));
+    EXPECT_THROW(repo.get("B", "A"), TransformError);
+}
+
+}  // namespace
+}  // namespace echosim::io
