@@ -1,6 +1,9 @@
 #include "echo/reconstruct.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -14,18 +17,85 @@ namespace {
 // value, weight, label, label distance: the bytes one voxel costs while reconstructing
 constexpr std::uint64_t kBytesPerVoxel = 4 + 4 + 1 + 4;
 
-std::array<std::size_t, 3> voxels_for(const glm::dvec3& box, double voxel)
+// One row of a frame as float: the pasting works on values, whatever the file stored.
+void row_values(const FramePixels& f, std::uint32_t row, std::vector<float>& out)
 {
-    return {std::size_t(std::ceil(box.x / voxel)) + 1, std::size_t(std::ceil(box.y / voxel)) + 1,
-            std::size_t(std::ceil(box.z / voxel)) + 1};
+    const std::size_t w = f.width;
+    const std::uint8_t* at = f.bytes.data() + std::size_t(row) * w * io::voxel_size(f.type);
+    out.resize(w);
+    switch (f.type) {
+    case io::VoxelType::uint8:
+        for (std::size_t c = 0; c < w; ++c) out[c] = float(at[c]);
+        return;
+    case io::VoxelType::uint16:
+        for (std::size_t c = 0; c < w; ++c) {
+            std::uint16_t v;
+            std::memcpy(&v, at + 2 * c, 2);
+            out[c] = float(v);
+        }
+        return;
+    case io::VoxelType::float32:
+        std::memcpy(out.data(), at, 4 * w);
+        return;
+    }
 }
 
 }  // namespace
 
+VoxelGrid box_grid(const glm::dvec3& lo, const glm::dvec3& hi, double voxel_mm, const glm::dmat3& axes)
+{
+    if (!(voxel_mm > 0) || !std::isfinite(voxel_mm)) throw std::invalid_argument("voxel size must be a positive number of millimetres");
+    const glm::dvec3 box = hi - lo;
+    if (!(box.x > 0 && box.y > 0 && box.z > 0)) throw std::invalid_argument("the frames span an empty box");
+    VoxelGrid g;
+    g.axes = axes;
+    g.origin = lo;
+    g.spacing = glm::dvec3(voxel_mm);
+    for (int a = 0; a < 3; ++a) {
+        const double n = std::ceil(box[a] / voxel_mm) + 1;
+        if (!(n < 1e15)) throw std::invalid_argument("the frames span a box too large to grid");
+        g.size[std::size_t(a)] = std::size_t(n);
+    }
+    return g;
+}
+
+VoxelGrid plus_grid(std::span<const glm::dmat4> frames, std::uint32_t width, std::uint32_t height, const PixelRect& clip,
+                    const glm::dvec3& spacing)
+{
+    if (frames.empty()) throw std::invalid_argument("no frame to grid");
+    if (!(spacing.x > 0 && spacing.y > 0 && spacing.z > 0)) throw std::invalid_argument("the output spacing must be positive");
+    // the clipped frame's corner pixels, as PLUS takes them (its clip corner is origin + size)
+    const double x0 = std::max<double>(0, clip.x0), x1 = std::min<double>(width - 1.0, clip.x1);
+    const double y0 = std::max<double>(0, clip.y0), y1 = std::min<double>(height - 1.0, clip.y1);
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (const glm::dmat4& m : frames)
+        for (double c : {x0, x1})
+            for (double r : {y0, y1}) {
+                const glm::dvec3 p(m * glm::dvec4(c, r, 0, 1));
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+    VoxelGrid g;
+    g.spacing = spacing;
+    for (int a = 0; a < 3; ++a) {
+        g.origin[a] = std::floor(lo[a] / spacing[a]) * spacing[a];
+        const double last = std::ceil((hi[a] - g.origin[a]) / spacing[a]);
+        if (!(last < 1e15)) throw std::invalid_argument("the frames span a box too large to grid");
+        g.size[std::size_t(a)] = std::size_t(last) + 1;
+    }
+    return g;
+}
+
+std::uint64_t reconstruction_bytes(const VoxelGrid& grid)
+{
+    const std::uint64_t n = grid.voxel_count();
+    return n > std::numeric_limits<std::uint64_t>::max() / kBytesPerVoxel ? std::numeric_limits<std::uint64_t>::max()
+                                                                          : n * kBytesPerVoxel;
+}
+
 std::uint64_t reconstruction_bytes(const glm::dvec3& box, double voxel)
 {
-    const auto n = voxels_for(box, voxel);
-    return std::uint64_t(n[0]) * n[1] * n[2] * kBytesPerVoxel;
+    return reconstruction_bytes(box_grid(glm::dvec3(0.0), box, voxel));
 }
 
 SweepBox sweep_box(std::span<const glm::dmat4> frames, std::uint32_t width, std::uint32_t height)
@@ -62,19 +132,27 @@ SweepBox sweep_box(const io::Sweep& sweep)
 }
 
 Reconstructor::Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const ReconstructOptions& options, const glm::dmat3& axes)
-    : options_(options), axes_(axes), lo_(lo)
+    : Reconstructor(box_grid(lo, hi, options.voxel_mm, axes), options)
 {
-    if (!(options.voxel_mm > 0) || !std::isfinite(options.voxel_mm))
-        throw std::invalid_argument("voxel size must be a positive number of millimetres");
-    const glm::dvec3 box = hi - lo;
-    if (!(box.x > 0 && box.y > 0 && box.z > 0)) throw std::invalid_argument("the frames span an empty box");
-    const std::uint64_t need = reconstruction_bytes(box, options.voxel_mm);
-    if (need > options.memory_budget_bytes)
-        throw std::runtime_error("a " + std::to_string(options.voxel_mm) + " mm voxel map of " + std::to_string(int(box.x)) + " x " +
-                                 std::to_string(int(box.y)) + " x " + std::to_string(int(box.z)) + " mm needs " +
-                                 std::to_string(need >> 20) + " MiB, over the memory budget of " +
-                                 std::to_string(options.memory_budget_bytes >> 20) + " MiB (choose larger voxels or a larger budget)");
-    size_ = voxels_for(box, options.voxel_mm);
+}
+
+Reconstructor::Reconstructor(const VoxelGrid& grid, const ReconstructOptions& options) : options_(options), grid_(grid), size_(grid.size)
+{
+    for (int a = 0; a < 3; ++a)
+        if (!(grid.spacing[a] > 0) || !std::isfinite(grid.spacing[a]))
+            throw std::invalid_argument("voxel size must be a positive number of millimetres");
+    if (grid.voxel_count() == 0) throw std::invalid_argument("an empty voxel grid");
+    const std::uint64_t need = reconstruction_bytes(grid);
+    if (need > options.memory_budget_bytes) {
+        const glm::dvec3 box = grid.spacing * glm::dvec3(double(size_[0] - 1), double(size_[1] - 1), double(size_[2] - 1));
+        char spacing[64];
+        std::snprintf(spacing, sizeof spacing, "%g x %g x %g mm", grid.spacing.x, grid.spacing.y, grid.spacing.z);
+        throw std::runtime_error("a voxel map of " + std::string(spacing) + " voxels over " + std::to_string(std::llround(box.x)) +
+                                 " x " + std::to_string(std::llround(box.y)) + " x " + std::to_string(std::llround(box.z)) +
+                                 " mm needs " + std::to_string(need >> 20) + " MiB, over the memory budget of " +
+                                 std::to_string(options.memory_budget_bytes >> 20) +
+                                 " MiB (choose larger voxels or a larger budget)");
+    }
     const std::size_t n = size_[0] * size_[1] * size_[2];
     value_.assign(n, 0.0f);
     weight_.assign(n, 0.0f);
@@ -82,38 +160,53 @@ Reconstructor::Reconstructor(const glm::dvec3& lo, const glm::dvec3& hi, const R
     label_distance_.assign(n, 1e9f);
 }
 
-std::uint64_t Reconstructor::memory_bytes() const { return voxel_count() * kBytesPerVoxel; }
+std::uint64_t Reconstructor::memory_bytes() const { return reconstruction_bytes(grid_); }
 
-void Reconstructor::insert(std::span<const std::uint8_t> pixels, std::span<const std::uint8_t> labels, std::uint32_t width,
-                           std::uint32_t height, const glm::dmat4& image_to_world)
+void Reconstructor::insert(const FramePixels& frame, std::span<const std::uint8_t> labels, const glm::dmat4& image_to_world)
 {
-    if (pixels.size() != std::size_t(width) * height) throw std::invalid_argument("frame pixels do not match its size");
+    const std::uint32_t width = frame.width, height = frame.height;
+    if (frame.bytes.size() != std::size_t(width) * height * io::voxel_size(frame.type))
+        throw std::invalid_argument("frame pixels do not match its size");
     const bool with_labels = !labels.empty();
-    if (with_labels && labels.size() != pixels.size()) throw std::invalid_argument("frame labels do not match its size");
+    if (with_labels && labels.size() != std::size_t(width) * height) throw std::invalid_argument("frame labels do not match its size");
+    if (width == 0 || height == 0) return;
     // pixel (c, r) -> continuous voxel index: affine, so step along rows and columns
-    const double inv = 1.0 / options_.voxel_mm;
-    const glm::dmat3 to_map = glm::transpose(axes_);
-    const glm::dvec3 p0 = (to_map * glm::dvec3(image_to_world * glm::dvec4(0, 0, 0, 1)) - lo_) * inv;
+    const glm::dvec3 inv = 1.0 / grid_.spacing;
+    const glm::dmat3 to_map = glm::transpose(grid_.axes);
+    const glm::dvec3 p0 = (to_map * glm::dvec3(image_to_world * glm::dvec4(0, 0, 0, 1)) - grid_.origin) * inv;
     const glm::dvec3 dc = to_map * glm::dvec3(image_to_world * glm::dvec4(1, 0, 0, 0)) * inv;
     const glm::dvec3 dr = to_map * glm::dvec3(image_to_world * glm::dvec4(0, 1, 0, 0)) * inv;
     const double nx = double(size_[0] - 1), ny = double(size_[1] - 1), nz = double(size_[2] - 1);
-    const bool mean = options_.compounding == Compounding::mean;
+    const Compounding compounding = options_.compounding;
+    const std::uint32_t c0 = options_.clip.x0, c1 = std::min(options_.clip.x1, width - 1);
+    const std::uint32_t r0 = options_.clip.y0, r1 = std::min(options_.clip.y1, height - 1);
+    const double threshold = options_.pixel_threshold;
 
     auto deposit = [&](std::size_t at, float v, float w) {
-        if (mean) {
+        switch (compounding) {
+        case Compounding::mean:
             value_[at] += w * v;
-        } else {
-            value_[at] = std::max(value_[at], v);
+            weight_[at] += w;
+            return;
+        case Compounding::max:
+            value_[at] = weight_[at] > 0 ? std::max(value_[at], v) : v;
+            weight_[at] = 1.0f;
+            return;
+        case Compounding::latest:
+            value_[at] = v;
+            weight_[at] = 1.0f;
+            return;
         }
-        weight_[at] += w;
     };
-    for (std::uint32_t r = 0; r < height; ++r) {
-        glm::dvec3 p = p0 + double(r) * dr;
-        for (std::uint32_t c = 0; c < width; ++c, p += dc) {
-            if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > nx || p.y > ny || p.z > nz) continue;
+    // maximum and latest take a trilinear corner only when it holds enough of the pixel, as PLUS
+    const float min_weight = compounding == Compounding::mean ? 0.0f : 0.125f;
+    for (std::uint32_t r = r0; r <= r1 && r0 <= r1; ++r) {
+        row_values(frame, r, row_);
+        glm::dvec3 p = p0 + double(r) * dr + double(c0) * dc;
+        for (std::uint32_t c = c0; c <= c1; ++c, p += dc) {
+            const float v = row_[c];
+            if (v < threshold) continue;
             const std::size_t k = std::size_t(r) * width + c;
-            const float v = float(pixels[k]);
-            const std::size_t i0 = std::size_t(p.x + 0.5), j0 = std::size_t(p.y + 0.5), k0 = std::size_t(p.z + 0.5);
             // a voxel's label is that of the nearest pixel that reached it
             auto label_voxel = [&](std::size_t vi, std::size_t vj, std::size_t vk) {
                 if (!with_labels) return;
@@ -123,18 +216,23 @@ void Reconstructor::insert(std::span<const std::uint8_t> pixels, std::span<const
                 if (dist < label_distance_[at]) label_distance_[at] = dist, label_[at] = labels[k];
             };
             if (options_.splat == Splat::nearest) {
+                // the voxel the pixel rounds to (halves up), when it is in the map
+                const glm::dvec3 q = glm::floor(p + 0.5);
+                if (q.x < 0 || q.y < 0 || q.z < 0 || q.x > nx || q.y > ny || q.z > nz) continue;
+                const std::size_t i0 = std::size_t(q.x), j0 = std::size_t(q.y), k0 = std::size_t(q.z);
                 deposit(index(i0, j0, k0), v, 1.0f);
                 label_voxel(i0, j0, k0);
                 continue;
             }
-            const std::size_t i = std::min(std::size_t(p.x), size_[0] - 2), j = std::min(std::size_t(p.y), size_[1] - 2),
-                              kk = std::min(std::size_t(p.z), size_[2] - 2);
+            // trilinear: only a pixel whose eight voxels are all in the map
+            if (!(p.x >= 0 && p.y >= 0 && p.z >= 0 && p.x < nx && p.y < ny && p.z < nz)) continue;
+            const std::size_t i = std::size_t(p.x), j = std::size_t(p.y), kk = std::size_t(p.z);
             const float fx = float(p.x - double(i)), fy = float(p.y - double(j)), fz = float(p.z - double(kk));
             for (int dz = 0; dz < 2; ++dz)
                 for (int dy = 0; dy < 2; ++dy)
                     for (int dx = 0; dx < 2; ++dx) {
                         const float w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * (dz ? fz : 1 - fz);
-                        if (w <= 1e-4f) continue;
+                        if (w <= min_weight) continue;
                         deposit(index(i + std::size_t(dx), j + std::size_t(dy), kk + std::size_t(dz)), v, w);
                         label_voxel(i + std::size_t(dx), j + std::size_t(dy), kk + std::size_t(dz));
                     }
@@ -174,7 +272,8 @@ int Reconstructor::fill_holes(const std::function<void(double)>& progress)
                 if (weight_[n] <= 0 && !queued[n]) queued[n] = 1, front.push_back(n);
             });
     std::vector<std::pair<float, std::uint8_t>> updates;
-    const int max_passes = std::max(1, int(std::ceil(options_.max_fill_mm / options_.voxel_mm)));
+    const double finest = std::min({grid_.spacing.x, grid_.spacing.y, grid_.spacing.z});
+    const int max_passes = std::max(1, int(std::ceil(options_.max_fill_mm / finest)));
     int pass = 0;
     for (; pass < max_passes && !front.empty(); ++pass) {
         updates.clear();
@@ -209,26 +308,43 @@ int Reconstructor::fill_holes(const std::function<void(double)>& progress)
     return pass;
 }
 
+io::Volume Reconstructor::empty_volume(io::VoxelType type) const
+{
+    io::Volume v = io::make_volume(size_, type);
+    v.origin = grid_.axes * grid_.origin;
+    v.directions = grid_.axes * glm::dmat3(grid_.spacing.x, 0, 0, 0, grid_.spacing.y, 0, 0, 0, grid_.spacing.z);
+    return v;
+}
+
 io::Volume Reconstructor::volume() const
 {
-    io::Volume v = io::make_volume(size_, io::VoxelType::uint8);
-    v.origin = axes_ * lo_;
-    v.directions = axes_ * options_.voxel_mm;
-    std::uint8_t* out = v.as<std::uint8_t>();
+    io::Volume v = empty_volume(options_.output_type);
     const bool mean = options_.compounding == Compounding::mean;
-    for (std::size_t k = 0; k < value_.size(); ++k) {
-        // mean: sums over weights (after fill_holes the weights are 1); max: the value itself
-        const float x = weight_[k] > 0 ? (mean ? value_[k] / weight_[k] : value_[k]) : 0.0f;
-        out[k] = std::uint8_t(std::clamp(x + 0.5f, 0.0f, 255.0f));
+    // mean: sums over weights (after fill_holes the weights are 1); max and latest: the value itself
+    const auto value = [&](std::size_t k) { return weight_[k] > 0 ? (mean ? value_[k] / weight_[k] : value_[k]) : 0.0f; };
+    switch (v.type) {
+    case io::VoxelType::uint8: {
+        std::uint8_t* out = v.as<std::uint8_t>();
+        for (std::size_t k = 0; k < value_.size(); ++k) out[k] = std::uint8_t(std::clamp(value(k) + 0.5f, 0.0f, 255.0f));
+        break;
+    }
+    case io::VoxelType::uint16: {
+        std::uint16_t* out = v.as<std::uint16_t>();
+        for (std::size_t k = 0; k < value_.size(); ++k) out[k] = std::uint16_t(std::clamp(value(k) + 0.5f, 0.0f, 65535.0f));
+        break;
+    }
+    case io::VoxelType::float32: {
+        float* out = v.as<float>();
+        for (std::size_t k = 0; k < value_.size(); ++k) out[k] = value(k);
+        break;
+    }
     }
     return v;
 }
 
 io::Volume Reconstructor::labels() const
 {
-    io::Volume v = io::make_volume(size_, io::VoxelType::uint8);
-    v.origin = axes_ * lo_;
-    v.directions = axes_ * options_.voxel_mm;
+    io::Volume v = empty_volume(io::VoxelType::uint8);
     std::copy(label_.begin(), label_.end(), v.as<std::uint8_t>());
     return v;
 }
