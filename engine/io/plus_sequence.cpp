@@ -86,7 +86,9 @@ void add_field(const std::filesystem::path& path, SequenceHeader& header, std::s
         fail_field(path, name, "given twice for this frame");
 }
 
-glm::dmat4 parse_matrix(const std::filesystem::path& path, std::string_view field, std::string_view text)
+// `usable`: the matrix is used, so it must be finite and affine; a transform the tracker marked
+// invalid only has to be 16 numbers (trackers leave zeros or NaN there).
+glm::dmat4 parse_matrix(const std::filesystem::path& path, std::string_view field, std::string_view text, bool usable = true)
 {
     const auto tokens = split_whitespace(text);
     if (tokens.size() != 16)
@@ -96,9 +98,16 @@ glm::dmat4 parse_matrix(const std::filesystem::path& path, std::string_view fiel
         double x = 0;
         if (!parse_number(tokens[i], x))
             fail_field(path, field, "entry " + std::to_string(i) + " " + quote_text(tokens[i]) + " is not a number");
-        if (!std::isfinite(x))
+        if (!std::isfinite(x) && usable)
             fail_field(path, field, "entry " + std::to_string(i) + " " + quote_text(tokens[i]) + " is not finite");
         m[int(i % 4)][int(i / 4)] = x;  // glm is column-major, the file row-major
+    }
+    const bool affine = m[0][3] == 0 && m[1][3] == 0 && m[2][3] == 0 && m[3][3] == 1;
+    if (!usable) {  // kept as written when it is a transform at all, for what writes it back
+        bool finite = affine;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(m[c][r]);
+        return finite ? m : glm::dmat4(1.0);
     }
     if (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1)
         fail_field(path, field, "the last row is not 0 0 0 1: not an affine transform");
@@ -115,60 +124,36 @@ bool parse_status(const std::filesystem::path& path, std::string_view field, std
     fail_field(path, field, quote_text(text) + " is not a transform status (OK, INVALID, MISSING)");
 }
 
-struct Transform {
-    glm::dmat4 matrix{1.0};
-    bool ok = true;
-};
-
-TrackedFrame resolve_frame(const std::filesystem::path& path, const SequenceHeader& header, const FrameFields& frame)
+// Every `<From>To<To>Transform` among `fields` (a frame's, or the file's), with its status (none
+// given: OK). An invalid transform's matrix is not checked: trackers leave anything there.
+std::vector<RecordedTransform> recorded_transforms(const std::filesystem::path& path, const FieldMap& fields,
+                                                   const std::string& prefix)
 {
-    // a transform of this frame, with its status; nullopt when the frame does not have it
-    const auto frame_transform = [&](std::string_view name) -> std::optional<Transform> {
-        const std::string field = std::string(name) + "Transform";
-        const auto it = frame.fields.find(field);
-        if (it == frame.fields.end()) return std::nullopt;
-        const std::string full = frame.label + "_" + field;
-        Transform t{parse_matrix(path, full, it->second), true};
-        if (const auto status = frame.fields.find(field + "Status"); status != frame.fields.end())
-            t.ok = parse_status(path, full + "Status", status->second);
-        return t;
-    };
-    // the calibration: per frame, else once for the whole file
-    const auto image_to_probe = [&]() -> std::optional<Transform> {
-        if (auto t = frame_transform("ImageToProbe")) return t;
-        const std::string* text = header.file_field("ImageToProbeTransform");
-        if (!text) return std::nullopt;
-        Transform t{parse_matrix(path, "ImageToProbeTransform", *text), true};
-        if (const std::string* status = header.file_field("ImageToProbeTransformStatus"))
-            t.ok = parse_status(path, "ImageToProbeTransformStatus", *status);
-        return t;
-    };
-
-    std::optional<Transform> image_to_reference = frame_transform("ImageToReference");
-    if (!image_to_reference) image_to_reference = frame_transform("ImageToTracker");
-    for (const char* reference : {"Reference", "Tracker"}) {
-        if (image_to_reference) break;
-        const auto probe = frame_transform(std::string("ProbeTo") + reference);
-        if (!probe) continue;
-        const auto calibration = image_to_probe();
-        if (!calibration)
-            fail_field(path, frame.label + "_ImageToProbeTransform",
-                       std::string("missing: ProbeTo") + reference +
-                           "Transform needs it, per frame or as a file-wide ImageToProbeTransform");
-        image_to_reference = Transform{probe->matrix * calibration->matrix, probe->ok && calibration->ok};
+    constexpr std::string_view suffix = "Transform";
+    std::vector<RecordedTransform> out;
+    for (const auto& [name, value] : fields) {
+        if (!std::string_view(name).ends_with(suffix)) continue;
+        const auto frames = split_transform_name(std::string_view(name).substr(0, name.size() - suffix.size()));
+        if (!frames) continue;  // not a transform PLUS could name either
+        const std::string field = prefix + name;
+        RecordedTransform t{frames->first, frames->second, glm::dmat4(1.0), true};
+        if (const auto status = fields.find(name + "Status"); status != fields.end())
+            t.valid = parse_status(path, field + "Status", status->second);
+        t.matrix = parse_matrix(path, field, value, t.valid);
+        out.push_back(std::move(t));
     }
-    if (!image_to_reference)
-        fail_field(path, frame.label + "_ImageToReferenceTransform",
-                   "missing: the frame has no ImageToReference or ImageToTracker transform, nor ProbeToReference or "
-                   "ProbeToTracker with ImageToProbe");
+    return out;
+}
 
-    TrackedFrame out;
-    out.image_to_reference = image_to_reference->matrix;
-    out.valid = image_to_reference->ok;
+RecordedFrame record_frame(const std::filesystem::path& path, const FrameFields& frame)
+{
+    RecordedFrame out;
+    out.label = frame.label;
+    out.transforms = recorded_transforms(path, frame.fields, frame.label + "_");
+    // ImageStatus in .mha, Status in .seq.nrrd
     for (const char* image_status : {"ImageStatus", "Status"})
         if (const auto it = frame.fields.find(image_status); it != frame.fields.end() && upper(it->second) != "OK")
-            out.valid = false;
-
+            out.image_valid = false;
     const auto timestamp = frame.fields.find("Timestamp");
     if (timestamp == frame.fields.end()) fail_field(path, frame.label + "_Timestamp", "missing");
     if (!parse_number(timestamp->second, out.timestamp) || !std::isfinite(out.timestamp))
@@ -177,32 +162,74 @@ TrackedFrame resolve_frame(const std::filesystem::path& path, const SequenceHead
 }
 
 // Frames 0 to count-1 must all be there, and no others; `count_field` is where the file gives count.
-std::vector<TrackedFrame> resolve_frames(const std::filesystem::path& path, const SequenceHeader& header,
-                                         std::uint64_t count, std::string_view count_field)
+std::vector<RecordedFrame> record_frames(const std::filesystem::path& path, const SequenceHeader& header, std::uint64_t count,
+                                         std::string_view count_field)
 {
     if (!header.frames.empty() && header.frames.rbegin()->first >= count)
         fail_field(path, header.frames.rbegin()->second.label,
                    "the header has fields for this frame, but " + std::string(count_field) + " gives only " +
                        std::to_string(count) + " frames");
-    std::vector<TrackedFrame> frames;
+    std::vector<RecordedFrame> frames;
     frames.reserve(header.frames.size());  // not count: a lying header fails below before costing memory
     for (std::uint64_t i = 0; i < count; ++i) {
         const auto it = header.frames.find(i);
         if (it == header.frames.end())
             fail_field(path, frame_label(std::size_t(i)),
-                       "no transform: " + std::string(count_field) + " gives " + std::to_string(count) +
+                       "no fields: " + std::string(count_field) + " gives " + std::to_string(count) +
                            " frames, the header has fields for " + std::to_string(header.frames.size()));
-        frames.push_back(resolve_frame(path, header, it->second));
+        frames.push_back(record_frame(path, it->second));
     }
     return frames;
 }
 
-constexpr const char* orientation_help = " is not a PLUS orientation (MF, MN, UF, UN, FM, FU, NM, NU)";
+// PLUS's orientations of an image: the letters of its x and y axes (M or U: toward the probe's
+// marked or unmarked side; F or N: away from or toward the transducer), and for a volume a third
+// letter for its z axis (A or D: ascending or descending), which a 2D frame has no use for.
+struct Orientation {
+    char x = 'M', y = 'F';
+};
 
-bool valid_orientation(std::string_view o)
+constexpr const char* orientation_help =
+    " is not a PLUS orientation of 2D frames (MF, MN, UF, UN, FM, FU, NM, NU, each with or without A or D)";
+
+std::optional<Orientation> parse_orientation(std::string_view text)
 {
-    static constexpr std::array<std::string_view, 8> codes = {"MF", "MN", "UF", "UN", "FM", "FU", "NM", "NU"};
-    return std::find(codes.begin(), codes.end(), o) != codes.end();
+    const std::string o = upper(text);
+    if (o.size() != 2 && !(o.size() == 3 && (o[2] == 'A' || o[2] == 'D'))) return std::nullopt;
+    const auto lateral = [](char c) { return c == 'M' || c == 'U'; };
+    const auto beam = [](char c) { return c == 'F' || c == 'N'; };
+    if ((lateral(o[0]) && beam(o[1])) || (beam(o[0]) && lateral(o[1]))) return Orientation{o[0], o[1]};
+    return std::nullopt;
+}
+
+// The frames turned to MF, as PLUS's reader does (its FlipImage; it leaves the transposed FM, FU,
+// NM and NU to RF data, which echosim turns as well): sizes come back as the MF image's.
+void orient_to_mf(Sweep& sweep, Orientation o)
+{
+    if (o.x == 'M' && o.y == 'F') return;
+    const std::size_t w = sweep.width, h = sweep.height, es = voxel_size(sweep.pixel_type);
+    const bool transposed = o.x == 'F' || o.x == 'N';
+    const std::size_t out_w = transposed ? h : w, out_h = transposed ? w : h;
+    std::vector<std::uint8_t> frame(w * h * es);
+    for (std::size_t f = 0; f < sweep.frames.size(); ++f) {
+        std::uint8_t* pixels = sweep.pixels.data() + f * w * h * es;
+        std::copy(pixels, pixels + frame.size(), frame.begin());
+        for (std::size_t j = 0; j < h; ++j)
+            for (std::size_t i = 0; i < w; ++i) {
+                // where pixel (i, j) lies across (lateral) and along (depth) the beam
+                std::size_t lateral, depth;
+                if (!transposed) {
+                    lateral = o.x == 'M' ? i : w - 1 - i;
+                    depth = o.y == 'F' ? j : h - 1 - j;
+                } else {
+                    depth = o.x == 'F' ? i : w - 1 - i;
+                    lateral = o.y == 'M' ? j : h - 1 - j;
+                }
+                std::copy_n(frame.data() + (j * w + i) * es, es, pixels + (depth * out_w + lateral) * es);
+            }
+    }
+    sweep.width = std::uint32_t(out_w);
+    sweep.height = std::uint32_t(out_h);
 }
 
 struct FrameGeometry {
@@ -245,9 +272,11 @@ FrameGeometry frame_geometry(const std::filesystem::path& path, std::string_view
 }
 
 std::uint64_t pixel_bytes(const std::filesystem::path& path, std::string_view sizes_field, const FrameGeometry& g,
-                          std::uint64_t budget)
+                          std::size_t element_bytes, std::uint64_t budget)
 {
-    const std::uint64_t frame = std::uint64_t(g.width) * g.height;  // < 2^64: both below 2^32
+    std::uint64_t frame = std::uint64_t(g.width) * g.height;  // < 2^64: both below 2^32
+    if (frame > std::numeric_limits<std::uint64_t>::max() / element_bytes) fail_field(path, sizes_field, "the pixel count overflows 64 bits");
+    frame *= element_bytes;
     if (g.count > std::numeric_limits<std::uint64_t>::max() / frame)
         fail_field(path, sizes_field, "the pixel count overflows 64 bits");
     const std::uint64_t bytes = frame * g.count;
@@ -255,6 +284,25 @@ std::uint64_t pixel_bytes(const std::filesystem::path& path, std::string_view si
         fail_field(path, sizes_field, std::to_string(bytes) + " bytes of pixels exceed the memory budget of " +
                                           std::to_string(budget) + " bytes");
     return bytes;
+}
+
+// What the header says of the images, before any pixel is read: sizes, type, the file's
+// orientation (none given: MF, as PLUS assumes) and the file-wide transforms.
+PlusRecording start_recording(const std::filesystem::path& path, const SequenceHeader& header, const FrameGeometry& geometry,
+                              std::string_view orientation_field, const std::string* orientation, VoxelType type)
+{
+    PlusRecording r;
+    r.images.width = geometry.width;
+    r.images.height = geometry.height;
+    r.images.pixel_type = type;
+    r.orientation_in_file = orientation ? *orientation : "MF";
+    if (!parse_orientation(r.orientation_in_file)) {
+        if (upper(r.orientation_in_file) == "AMF")
+            fail_field(path, orientation_field, "'AMF' orients volumes (x across the frames), not a sequence of 2D frames");
+        fail_field(path, orientation_field, quote_text(r.orientation_in_file) + orientation_help);
+    }
+    r.file_transforms = recorded_transforms(path, header.file, "");
+    return r;
 }
 
 // The pixels from a zlib stream of at most `packed` bytes, streamed: the compressed data is never
@@ -286,7 +334,7 @@ std::vector<std::uint8_t> inflate_pixels(const std::filesystem::path& path, std:
     return std::move(pixels.data);
 }
 
-Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
+PlusRecording read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
 {
     // the text header, up to ElementDataFile: the last field, after which the pixels start
     SequenceHeader header;
@@ -337,14 +385,11 @@ Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_
         compressed = upper(*c) == "TRUE";
     }
 
-    Sweep sweep;
-    sweep.width = geometry.width;
-    sweep.height = geometry.height;
-    if (const std::string* o = header.file_field("UltrasoundImageOrientation")) sweep.orientation = *o;
-    if (!valid_orientation(sweep.orientation))
-        fail_field(path, "UltrasoundImageOrientation", quote_text(sweep.orientation) + orientation_help);
-    const std::uint64_t bytes = pixel_bytes(path, "DimSize", geometry, budget);
-    sweep.frames = resolve_frames(path, header, geometry.count, "DimSize");
+    PlusRecording recording = start_recording(path, header, geometry, "UltrasoundImageOrientation",
+                                              header.file_field("UltrasoundImageOrientation"), VoxelType::uint8);
+    Sweep& sweep = recording.images;
+    const std::uint64_t bytes = pixel_bytes(path, "DimSize", geometry, 1, budget);
+    recording.frames = record_frames(path, header, geometry.count, "DimSize");
 
     // the pixels, checked against what is left of the file before allocating
     if (!compressed) {
@@ -354,7 +399,7 @@ Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_
             fail_field(path, "ElementDataFile", "truncated pixel data: " + std::to_string(found) +
                                                     " bytes after the header, DimSize needs " + std::to_string(bytes));
         sweep.pixels = std::move(*pixels);
-        return sweep;
+        return recording;
     }
     const std::uint64_t left = bytes_left(in);
     std::uint64_t packed = left;
@@ -368,29 +413,35 @@ Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_
         packed = n;
     }
     sweep.pixels = inflate_pixels(path, in, bytes, packed);
-    return sweep;
+    return recording;
 }
 
-Sweep read_seq_nrrd(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
+PlusRecording read_seq_nrrd(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
 {
     const NrrdHeader nrrd = read_nrrd_header(in, path);
-    if (nrrd.type() != VoxelType::uint8) nrrd.fail("type", "only unsigned char (8-bit greyscale) frames are supported");
+    const VoxelType type = nrrd.type();
     SequenceHeader header;
     for (const auto& [key, value] : nrrd.key_values) add_field(path, header, key, value);
     nrrd.sizes();  // checks sizes against dimension
     const FrameGeometry geometry = frame_geometry(path, "sizes", nrrd.require("sizes"), "kinds", nrrd.find("kinds"));
 
-    Sweep sweep;
-    sweep.width = geometry.width;
-    sweep.height = geometry.height;
-    if (const std::string* o = header.file_field("ultrasound image orientation")) sweep.orientation = *o;
-    else if (const std::string* f = nrrd.find("ultrasound image orientation")) sweep.orientation = *f;
-    if (!valid_orientation(sweep.orientation))
-        fail_field(path, "ultrasound image orientation", quote_text(sweep.orientation) + orientation_help);
-    pixel_bytes(path, "sizes", geometry, budget);
-    sweep.frames = resolve_frames(path, header, geometry.count, "sizes");
-    sweep.pixels = read_nrrd_data(in, nrrd, budget);
-    return sweep;
+    const std::string* orientation = header.file_field("ultrasound image orientation");
+    if (!orientation) orientation = nrrd.find("ultrasound image orientation");
+    PlusRecording recording = start_recording(path, header, geometry, "ultrasound image orientation", orientation, type);
+    pixel_bytes(path, "sizes", geometry, voxel_size(type), budget);
+    recording.frames = record_frames(path, header, geometry.count, "sizes");
+    recording.images.pixels = read_nrrd_data(in, nrrd, budget);
+    return recording;
+}
+
+const char* metaimage_type(VoxelType type)
+{
+    switch (type) {
+    case VoxelType::uint8: return "MET_UCHAR";
+    case VoxelType::uint16: return "MET_USHORT";
+    case VoxelType::float32: return "MET_FLOAT";
+    }
+    return "MET_UCHAR";
 }
 
 void check_sweep(const std::filesystem::path& path, const Sweep& sweep)
@@ -400,7 +451,7 @@ void check_sweep(const std::filesystem::path& path, const Sweep& sweep)
         fail(path, "pixels hold " + std::to_string(sweep.pixels.size()) + " bytes, " + std::to_string(sweep.frames.size()) +
                        " frames of " + std::to_string(sweep.width) + " x " + std::to_string(sweep.height) + " need " +
                        std::to_string(sweep.frame_bytes() * sweep.frames.size()));
-    if (!valid_orientation(sweep.orientation))
+    if (!parse_orientation(sweep.orientation))
         fail_field(path, "UltrasoundImageOrientation", quote_text(sweep.orientation) + orientation_help);
     for (std::size_t i = 0; i < sweep.frames.size(); ++i) {
         const TrackedFrame& f = sweep.frames[i];
@@ -449,7 +500,7 @@ void write_plus_mha(const std::filesystem::path& path, const Sweep& sweep, bool 
         h += "\n" + label + "_ImageToReferenceTransformStatus = " + (f.valid ? "OK" : "INVALID") + "\n";
         h += label + "_Timestamp = " + format_double(f.timestamp) + "\n";
     }
-    h += "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n";
+    h += std::string("ElementType = ") + metaimage_type(sweep.pixel_type) + "\nElementDataFile = LOCAL\n";
 
     PartialFile<PlusSequenceError> out(path);
     out.write(h.data(), h.size());
@@ -458,19 +509,75 @@ void write_plus_mha(const std::filesystem::path& path, const Sweep& sweep, bool 
     out.commit();
 }
 
-Sweep read_plus_sequence(const std::filesystem::path& path, std::uint64_t memory_budget_bytes)
+PlusRecording read_plus_recording(const std::filesystem::path& path, std::uint64_t memory_budget_bytes)
 {
     std::ifstream in = text::open_binary<PlusSequenceError>(path);
     char magic[4] = {};
     in.read(magic, sizeof magic);
     in.clear();
     in.seekg(0);
-    if (std::string_view(magic, sizeof magic) != "NRRD") return read_mha(path, in, memory_budget_bytes);
-    try {
-        return read_seq_nrrd(path, in, memory_budget_bytes);
-    } catch (const NrrdError& e) {
-        throw PlusSequenceError(e.what());  // one error type for callers; the message already names file and field
+    PlusRecording r;
+    if (std::string_view(magic, sizeof magic) != "NRRD") {
+        r = read_mha(path, in, memory_budget_bytes);
+    } else {
+        try {
+            r = read_seq_nrrd(path, in, memory_budget_bytes);
+        } catch (const NrrdError& e) {
+            throw PlusSequenceError(e.what());  // one error type for callers; the message already names file and field
+        }
     }
+    r.images.frames.resize(r.frames.size());
+    orient_to_mf(r.images, *parse_orientation(r.orientation_in_file));
+    r.images.orientation = "MF";
+    for (std::size_t f = 0; f < r.frames.size(); ++f) {
+        r.images.frames[f].timestamp = r.frames[f].timestamp;
+        r.images.frames[f].image_valid = r.frames[f].image_valid;
+        r.images.frames[f].valid = false;  // until resolved
+    }
+    return r;
+}
+
+namespace {
+
+// The transforms a frame can chain through: the configuration's, the file's, then the frame's own.
+TransformRepository frame_repository(const PlusRecording& recording, std::size_t f, const TransformRepository& config)
+{
+    TransformRepository repo = config;
+    for (const auto* list : {&recording.file_transforms, &recording.frames[f].transforms})
+        for (const RecordedTransform& t : *list) repo.set(t.from, t.to, t.matrix, t.valid);
+    return repo;
+}
+
+}  // namespace
+
+Sweep resolve_sweep(const std::filesystem::path& path, const PlusRecording& recording, const TransformRepository& config,
+                    const std::string& image_frame, const std::string& reference_frame)
+{
+    Sweep sweep = recording.images;
+    for (std::size_t f = 0; f < recording.frames.size(); ++f) {
+        const RecordedFrame& frame = recording.frames[f];
+        try {
+            const FrameTransform t = frame_repository(recording, f, config).get(image_frame, reference_frame);
+            sweep.frames[f].image_to_reference = t.matrix;
+            sweep.frames[f].valid = t.valid && frame.image_valid;
+        } catch (const TransformError& e) {
+            fail_field(path, frame.label, e.what());
+        }
+    }
+    return sweep;
+}
+
+Sweep read_plus_sequence(const std::filesystem::path& path, std::uint64_t memory_budget_bytes)
+{
+    const PlusRecording recording = read_plus_recording(path, memory_budget_bytes);
+    // Reference, as PLUS's tools default to, unless the recording names only the tracker's frame
+    std::string reference = "Reference";
+    if (!recording.frames.empty()) {
+        const TransformRepository first = frame_repository(recording, 0, {});
+        if (!first.find("Image", reference) && (first.find("Image", "Tracker") || (!first.knows(reference) && first.knows("Tracker"))))
+            reference = "Tracker";
+    }
+    return resolve_sweep(path, recording, {}, "Image", reference);
 }
 
 }  // namespace echosim::io

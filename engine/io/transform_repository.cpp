@@ -113,6 +113,11 @@ FrameTransform TransformRepository::get(std::string_view from, std::string_view 
     throw TransformError(why);
 }
 
+bool TransformRepository::knows(std::string_view frame) const
+{
+    return std::any_of(links_.begin(), links_.end(), [&](const Link& l) { return l.from == frame || l.to == frame; });
+}
+
 std::vector<std::string> TransformRepository::names() const
 {
     std::vector<std::string> out;

@@ -47,6 +47,9 @@ public:
     // As find, but throws TransformError saying which transform is missing when there is no chain.
     FrameTransform get(std::string_view from, std::string_view to) const;
 
+    // Whether any transform held starts or ends in `frame`.
+    bool knows(std::string_view frame) const;
+
     // The transforms held, as "FromToTo" names in the order they were first set.
     std::vector<std::string> names() const;
 

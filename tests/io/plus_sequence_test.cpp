@@ -178,7 +178,12 @@ TEST(PlusSequence, RoundTripsCompressedEveryPixelAndPose)
     EXPECT_EQ(std::stoul(bytes.substr(size_at + 22)), bytes.size() - data_at);
     EXPECT_LT(bytes.size() - data_at, s.pixels.size());
 
-    expect_same_sweep(read_plus_sequence(path), s);
+    // read as PLUS reads it: turned to MF, each row mirrored (UF's x runs toward the unmarked side)
+    Sweep mf = s;
+    mf.orientation = "MF";
+    for (std::size_t row = 0; row < mf.pixels.size() / mf.width; ++row)
+        for (std::size_t c = 0; c < mf.width; ++c) mf.pixels[row * mf.width + c] = s.pixels[row * s.width + s.width - 1 - c];
+    expect_same_sweep(read_plus_sequence(path), mf);
     std::filesystem::remove(path);
 }
 
@@ -310,8 +315,8 @@ TEST(PlusSequence, RejectsBadSeqNrrd)
     const auto path = temp("bad.seq.nrrd");
     write_bytes(path, seq_nrrd_header("raw") + "ABCDEFabcde");
     expect_plus_error(path, {"truncated", "11 bytes"});
-    write_bytes(path, with(seq_nrrd_header("raw"), "type: unsigned char", "type: unsigned short") + "ABCDEFabcdefABCDEFabcdef");
-    expect_plus_error(path, {"'type'", "unsigned char"});
+    write_bytes(path, with(seq_nrrd_header("raw"), "type: unsigned char", "type: double") + std::string(96, 'x'));
+    expect_plus_error(path, {"type", "double"});
     write_bytes(path, with(seq_nrrd_header("raw"), "Transform:=0.2 0 0 5 0 0.2 0 6 0 0 0.2 9", "Transform:=0.2 0 0 x 0 0.2 0 6 0 0 0.2 9") +
                           "ABCDEFabcdef");
     expect_plus_error(path, {"Seq_Frame0001_ImageToReferenceTransform", "'x'", "not a number"});
@@ -334,15 +339,16 @@ TEST(PlusSequence, RejectsBadMhaNamingFrameAndField)
     expect_mha_error("fewer_frames.mha", without_lines(with(good, "DimSize = 4 3 3", "DimSize = 4 3 4"), "Seq_Frame0002"),
                      {"Seq_Frame0002", "DimSize"});
     expect_mha_error("no_transform.mha", with_line(good, "Seq_Frame0001_ImageToReferenceTransform =", ""),
-                     {"Seq_Frame0001_ImageToReferenceTransform", "missing"});
-    expect_mha_error("nan.mha", with_line(good, f2, f2 + "1 0 0 0 0 1 0 0 0 0 1 nan 0 0 0 1"),
-                     {"Seq_Frame0002_ImageToReferenceTransform", "entry 11", "not finite"});
+                     {"Seq_Frame0001", "no chain of transforms from Image to Reference", "ImageToReference"});
+    const std::string f1 = "Seq_Frame0001_ImageToReferenceTransform = ";
+    expect_mha_error("nan.mha", with_line(good, f1, f1 + "1 0 0 0 0 1 0 0 0 0 1 nan 0 0 0 1"),
+                     {"Seq_Frame0001_ImageToReferenceTransform", "entry 11", "not finite"});
     expect_mha_error("text.mha", with_line(good, f2, f2 + "1 0 0 0 0 1 abc 0 0 0 1 0 0 0 0 1"),
                      {"Seq_Frame0002_ImageToReferenceTransform", "'abc'", "not a number"});
     expect_mha_error("twelve.mha", with_line(good, f2, f2 + "1 0 0 0 0 1 0 0 0 0 1 0"),
                      {"Seq_Frame0002_ImageToReferenceTransform", "16 numbers", "found 12"});
-    expect_mha_error("projective.mha", with_line(good, f2, f2 + "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0.5 1"),
-                     {"Seq_Frame0002_ImageToReferenceTransform", "affine"});
+    expect_mha_error("projective.mha", with_line(good, f1, f1 + "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0.5 1"),
+                     {"Seq_Frame0001_ImageToReferenceTransform", "affine"});
     expect_mha_error("status.mha", with(good, "0001_ImageToReferenceTransformStatus = OK", "0001_ImageToReferenceTransformStatus = MAYBE"),
                      {"Seq_Frame0001_ImageToReferenceTransformStatus", "'MAYBE'"});
     expect_mha_error("timestamp.mha", with_line(good, "Seq_Frame0001_Timestamp", ""), {"Seq_Frame0001_Timestamp", "missing"});
@@ -363,7 +369,22 @@ TEST(PlusSequence, RejectsBadMhaNamingFrameAndField)
     const std::string frame = "Seq_Frame000";
     for (int f = 0; f < 3; ++f)
         probe = with(probe, frame + std::to_string(f) + "_ImageToReferenceTransform", frame + std::to_string(f) + "_ProbeToTrackerTransform");
-    expect_mha_error("nocalibration.mha", probe, {"Seq_Frame0000_ImageToProbeTransform", "missing"});
+    expect_mha_error("nocalibration.mha", probe, {"Seq_Frame0000", "no chain of transforms from Image to Tracker", "ImageToProbe"});
+}
+
+// A tracker that lost the probe may leave anything in the matrix: the frame is skipped, not the file.
+TEST(PlusSequence, AnInvalidTransformMayHoldAnything)
+{
+    const std::string f2 = "Seq_Frame0002_ImageToReferenceTransform = ";
+    for (const char* junk : {"0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0", "nan nan nan nan nan nan nan nan nan nan nan nan nan nan nan nan"}) {
+        const auto path = temp("junk.mha");
+        write_bytes(path, with_line(good_mha(), f2, f2 + junk));
+        const Sweep s = read_plus_sequence(path);
+        ASSERT_EQ(s.frames.size(), 3u);
+        EXPECT_TRUE(s.frames[1].valid);
+        EXPECT_FALSE(s.frames[2].valid);
+        std::filesystem::remove(path);
+    }
 }
 
 TEST(PlusSequence, RejectsCorruptCompressedData)
