@@ -1,6 +1,7 @@
 #include "io/plus_sequence.hpp"
 
 #include "core/parse_number.hpp"
+#include "io/metaimage.hpp"
 #include "io/nrrd.hpp"
 #include "io/partial_file.hpp"
 #include "io/text_fields.hpp"
@@ -257,33 +258,15 @@ std::uint64_t pixel_bytes(const std::filesystem::path& path, std::string_view si
     return bytes;
 }
 
-// The pixels from a zlib stream of at most `packed` bytes, streamed: the compressed data is never
-// held whole, and the pixels grow only as the stream delivers them.
+// The pixels from a zlib stream of at most `packed` bytes (io/metaimage.hpp's, in our error type).
 std::vector<std::uint8_t> inflate_pixels(const std::filesystem::path& path, std::istream& in, std::uint64_t bytes,
                                          std::uint64_t packed)
 {
-    const std::string dim_size = std::to_string(bytes) + " bytes DimSize gives";
-    const std::string corrupt = "compressed pixel data fails to inflate (corrupt or truncated): ";
-    Inflated pixels;
     try {
-        pixels = inflate_exactly(in, bytes, packed);
-    } catch (const ZlibError& e) {
-        const std::string produced = std::to_string(e.produced());
-        if (e.kind() == ZlibError::Kind::ended_early)
-            fail_field(path, "CompressedData", "the compressed pixels inflate to " + produced + " bytes, DimSize needs " +
-                                                   std::to_string(bytes));
-        if (e.kind() == ZlibError::Kind::input_ended && e.produced() == bytes)
-            fail_field(path, "CompressedData",
-                       "the compressed pixels do not end after the " + dim_size + " (more data, or a cut stream)");
-        if (e.kind() == ZlibError::Kind::input_ended)
-            fail_field(path, "CompressedData", corrupt + "the data ends after " + produced + " of the " + dim_size);
-        if (e.kind() == ZlibError::Kind::corrupt) fail_field(path, "CompressedData", corrupt + e.what());
-        fail_field(path, "CompressedData", e.what());
+        return inflate_metaimage_data(path, in, bytes, packed, "DimSize");
+    } catch (const MetaImageError& e) {
+        throw PlusSequenceError(e.what());  // the message already names file and field
     }
-    if (pixels.beyond > 0)
-        fail_field(path, "CompressedData", "the compressed pixels do not end after the " + dim_size + ": they hold " +
-                                               std::to_string(pixels.beyond) + " bytes more");
-    return std::move(pixels.data);
 }
 
 Sweep read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
