@@ -1,9 +1,11 @@
-// Scratch files for tests: unique names in the temporary folder, whole-file reads and writes, and
-// a one-place text edit for making broken variants of a good file.
+// Scratch files for tests: unique names in the temporary folder, whole-file reads and writes, a
+// one-place text edit for making broken variants of a good file, and the check that a reader's
+// error names the file and what is wrong with it.
 #pragma once
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <string>
 
@@ -35,6 +37,20 @@ inline std::string with(std::string text, const std::string& from, const std::st
     EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the test text";
     if (at != std::string::npos) text.replace(at, from.size(), to);
     return text;
+}
+
+// read() must throw an Error whose message names `path` and holds every one of `words`.
+template <class Error, class Read>
+void expect_error_naming(const std::filesystem::path& path, std::initializer_list<const char*> words, Read&& read)
+{
+    try {
+        read();
+        ADD_FAILURE() << "no error reading " << path;
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+        for (const char* word : words) EXPECT_NE(message.find(word), std::string::npos) << "no '" << word << "' in: " << message;
+    }
 }
 
 }  // namespace echosim::test

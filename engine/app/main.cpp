@@ -42,8 +42,8 @@ int main(int argc, char** argv)
     run_cmd->add_flag("--fullscreen", run.fullscreen, "start fullscreen (F11 toggles)");
     run_cmd->add_option("--frames", run.frames, "quit after this many presented frames")->check(CLI::NonNegativeNumber);
     run_cmd->add_flag("--exercise", run.exercise, "resize, minimise and toggle fullscreen while running (smoke test)");
-    run_cmd->add_option("--volume", run.volume, "echographic volume (NRRD, uint8); default: the case's, made once and cached");
-    run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD, uint8); without: linear deformation");
+    run_cmd->add_option("--volume", run.volume, "echographic volume (NRRD or MetaImage; not 8-bit: min..max mapped onto 0..255); default: the case's, made once and cached");
+    run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
     run_cmd->add_option("--case", run.case_name, "healthy, dvt-acute or dvt-chronic");
     run_cmd->add_option("--device", run.device, "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), null")
         ->check(CLI::IsMember({"mouse", "spacemouse", "null"}));
@@ -94,8 +94,8 @@ int main(int argc, char** argv)
 
     SliceArgs slice;
     auto* slice_cmd = app.add_subcommand("slice", "one echographic image at a probe pose, pressed by the simulated tissue if asked");
-    slice_cmd->add_option("--volume", slice.volume, "volume (NRRD, uint8); default: the case's volume, made once and cached");
-    slice_cmd->add_option("--labels", slice.labels, "tissue labels on the volume's grid (NRRD, uint8); without: linear deformation");
+    slice_cmd->add_option("--volume", slice.volume, "volume (NRRD or MetaImage; not 8-bit: min..max mapped onto 0..255); default: the case's volume, made once and cached");
+    slice_cmd->add_option("--labels", slice.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
     slice_cmd->add_option("--out", slice.out, "image to write: .png, or .nrrd placed in the volume's space")->required();
     slice_cmd->add_option("--pose", slice.pose, "probe resting on the skin: x,y,z,qw,qx,qy,qz in world (LPS mm); default: the patch centre");
     slice_cmd->add_option("--press-mm", slice.press_mm, "press the probe this far in and let the tissue settle [mm]")

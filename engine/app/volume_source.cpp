@@ -1,13 +1,17 @@
 #include "app/volume_source.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <system_error>
 #include <unistd.h>
 
 #include "echo/case_volume.hpp"
 #include "echo/echo_image_cpu.hpp"
+#include "io/volume_file.hpp"
 #include "scene/leg.hpp"
 
 namespace echosim::app {
@@ -15,6 +19,81 @@ namespace {
 
 // Bump when the phantom, the B-mode model, the sweep or the reconstruction change what they make.
 constexpr const char* kRecipe = "v1";
+
+// f(const T* voxels) with the volume's own voxel type.
+template <class F>
+void visit_voxels(const io::Volume& v, F&& f)
+{
+    switch (v.type) {
+    case io::VoxelType::uint8: f(v.as<std::uint8_t>()); return;
+    case io::VoxelType::uint16: f(v.as<std::uint16_t>()); return;
+    case io::VoxelType::int16: f(v.as<std::int16_t>()); return;
+    case io::VoxelType::float32: f(v.as<float>()); return;
+    }
+}
+
+std::string number_text(double x)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return buf;
+}
+
+// An 8-bit volume (zeros) with the size, geometry and key/values of `v`.
+io::Volume uint8_like(const io::Volume& v)
+{
+    io::Volume out = io::make_volume(v.size, io::VoxelType::uint8);
+    out.directions = v.directions;
+    out.origin = v.origin;
+    out.key_values = v.key_values;
+    return out;
+}
+
+// 8-bit grey for the image pipeline from a volume of another type: the range [lo, hi] of its finite
+// voxels mapped linearly onto 0..255, rounded (non-finite voxels: 0). `rule` says so in words.
+io::Volume to_grey(const io::Volume& v, std::string& rule)
+{
+    io::Volume grey = uint8_like(v);
+    visit_voxels(v, [&](const auto* voxels) {
+        const std::size_t n = v.voxel_count();
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        std::size_t non_finite = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double x = double(voxels[i]);
+            if (!std::isfinite(x)) ++non_finite;
+            else lo = std::min(lo, x), hi = std::max(hi, x);
+        }
+        const double scale = hi > lo ? 255.0 / (hi - lo) : 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double x = double(voxels[i]);
+            grey.data[i] = std::isfinite(x) ? std::uint8_t(std::lround(std::clamp((x - lo) * scale, 0.0, 255.0))) : 0;
+        }
+        rule = std::string(io::to_string(v.type)) + " voxels ";
+        if (non_finite == n) rule += "all non-finite: grey 0";
+        else if (hi > lo) rule += number_text(lo) + ".." + number_text(hi) + " mapped linearly onto grey 0..255";
+        else rule += "all " + number_text(lo) + ": grey 0";
+        if (non_finite > 0 && non_finite < n) rule += ", " + std::to_string(non_finite) + " non-finite voxels as 0";
+    });
+    return grey;
+}
+
+// Tissue codes from a label map of another type, exact: every voxel must be an integer 0..255.
+io::Volume to_codes(const io::Volume& v, const std::filesystem::path& path)
+{
+    io::Volume codes = uint8_like(v);
+    visit_voxels(v, [&](const auto* voxels) {
+        for (std::size_t i = 0; i < v.voxel_count(); ++i) {
+            const double x = double(voxels[i]);
+            if (!(x >= 0 && x <= 255 && x == std::floor(x))) {
+                const std::size_t column = i % v.size[0], row = i / v.size[0] % v.size[1], slice = i / v.size[0] / v.size[1];
+                throw std::invalid_argument(path.string() + ": labels: voxel (" + std::to_string(column) + ", " + std::to_string(row) +
+                                            ", " + std::to_string(slice) + ") is " + number_text(x) + ", not a tissue code (an integer 0..255)");
+            }
+            codes.data[i] = std::uint8_t(x);
+        }
+    });
+    return codes;
+}
 
 }  // namespace
 
@@ -80,9 +159,14 @@ std::function<void(const std::string&, double)> terminal_progress(const char* co
 VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels)
 {
     VolumePair pair;
-    auto v = std::make_shared<io::Volume>(io::read_nrrd(volume));
+    auto v = std::make_shared<io::Volume>(io::read_volume(volume));
+    std::string rule;
+    if (v->type != io::VoxelType::uint8) *v = to_grey(*v, rule);
     std::shared_ptr<io::Volume> l;
-    if (!labels.empty()) l = std::make_shared<io::Volume>(io::read_nrrd(labels));
+    if (!labels.empty()) {
+        l = std::make_shared<io::Volume>(io::read_volume(labels));
+        if (l->type != io::VoxelType::uint8) *l = to_codes(*l, labels);
+    }
     try {
         echo::check_volumes(*v, l.get());
     } catch (const std::invalid_argument& e) {
@@ -90,7 +174,8 @@ VolumePair user_volume(const std::filesystem::path& volume, const std::filesyste
     }
     pair.volume = std::move(v);
     pair.labels = std::move(l);
-    pair.description = volume.string() + (labels.empty() ? " (no labels: linear deformation)" : " with labels " + labels.string());
+    pair.description = volume.string() + (rule.empty() ? "" : " (" + rule + ")") +
+                       (labels.empty() ? " (no labels: linear deformation)" : " with labels " + labels.string());
     return pair;
 }
 

@@ -1,5 +1,5 @@
-// Where the echographic image's volume comes from: the user's own (`--volume F.nrrd [--labels
-// F.nrrd]`, for example one reconstructed from their own PLUS recording), or the default case's,
+// Where the echographic image's volume comes from: the user's own (`--volume F [--labels F]`, NRRD
+// or MetaImage, for example one reconstructed from their own PLUS recording), or the default case's,
 // made on first use (the phantom imaged and reconstructed: echo/case_volume.hpp, about a minute)
 // and kept in the user's cache ($XDG_CACHE_HOME/echosim, else ~/.cache/echosim), so later runs
 // start at once. A cached pair is written into a folder of its own under a temporary name and
@@ -36,8 +36,17 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
 // NN %" on one terminal line, rewritten only when the stage or the whole percent changes.
 std::function<void(const std::string& stage, double done)> terminal_progress(const char* command);
 
-// The user's volume and labels (empty path: none), read and checked (uint8, labels on the volume's
-// grid). Throws io::NrrdError or std::invalid_argument naming the file.
+// The user's volume and labels (empty path: none), NRRD or MetaImage (io::read_volume), read and
+// checked (labels on the volume's grid). The image pipeline reads 8-bit grey and 8-bit tissue codes:
+// - a volume of another type (16-bit, signed or float, e.g. reconstructed from a 16-bit recording)
+//   is mapped linearly from the range of its finite voxels, min..max, onto grey 0..255 (rounded;
+//   non-finite voxels 0), and the description says so with the numbers, e.g. "V.mha (unsigned short
+//   voxels 12..3981 mapped linearly onto grey 0..255)", so the one line a command prints about its
+//   volume states the rule; for another window, convert the volume to 8 bits before;
+// - labels of another type (Slicer often writes label maps as short) are kept exactly when every
+//   voxel is an integer 0..255, else refused naming the first voxel that is not.
+// Throws io::NrrdError, io::MetaImageError, io::VolumeFileError or std::invalid_argument naming the
+// file.
 VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels);
 
 }  // namespace echosim::app

@@ -34,6 +34,13 @@ void row_values(const FramePixels& f, std::uint32_t row, std::vector<float>& out
             out[c] = float(v);
         }
         return;
+    case io::VoxelType::int16:
+        for (std::size_t c = 0; c < w; ++c) {
+            std::int16_t v;
+            std::memcpy(&v, at + 2 * c, 2);
+            out[c] = float(v);
+        }
+        return;
     case io::VoxelType::float32:
         std::memcpy(out.data(), at, 4 * w);
         return;
@@ -331,6 +338,12 @@ io::Volume Reconstructor::volume() const
     case io::VoxelType::uint16: {
         std::uint16_t* out = v.as<std::uint16_t>();
         for (std::size_t k = 0; k < value_.size(); ++k) out[k] = std::uint16_t(std::clamp(value(k) + 0.5f, 0.0f, 65535.0f));
+        break;
+    }
+    case io::VoxelType::int16: {
+        std::int16_t* out = v.as<std::int16_t>();
+        for (std::size_t k = 0; k < value_.size(); ++k)
+            out[k] = std::int16_t(std::floor(std::clamp(value(k) + 0.5f, -32768.0f, 32767.0f)));
         break;
     }
     case io::VoxelType::float32: {

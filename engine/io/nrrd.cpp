@@ -133,29 +133,9 @@ std::vector<std::string_view> split_vectors(std::string_view s)
     return out;
 }
 
-bool is_singular(const glm::dmat3& m)
-{
-    const double scale = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
-    return !(std::abs(glm::determinant(m)) > 1e-12 * scale);
-}
-
 void check_volume(const std::filesystem::path& path, const Volume& v)
 {
-    std::uint64_t count = 1;
-    for (const std::size_t s : v.size) {
-        if (s == 0) fail(path, "refusing to write a volume with a zero size");
-        if (count > std::numeric_limits<std::uint64_t>::max() / s) fail(path, "the volume's voxel count overflows");
-        count *= s;
-    }
-    if (count > std::numeric_limits<std::uint64_t>::max() / voxel_size(v.type) || v.data.size() != count * voxel_size(v.type))
-        fail(path, "data holds " + std::to_string(v.data.size()) + " bytes, size and type need " +
-                       std::to_string(count * voxel_size(v.type)));
-    for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r)
-            if (!std::isfinite(v.directions[c][r])) fail(path, "space directions: non-finite component");
-    if (is_singular(v.directions)) fail(path, "space directions: singular (the axes do not span 3D space)");
-    if (!std::isfinite(v.origin.x) || !std::isfinite(v.origin.y) || !std::isfinite(v.origin.z))
-        fail(path, "space origin: non-finite component");
+    if (const std::string defect = volume_defect(v); !defect.empty()) fail(path, defect);
     // a key must not read back as a comment or a field
     for (const auto& [key, value] : v.key_values)
         if (key.empty() || key[0] == '#' || key.find(":=") != std::string::npos || key.find(": ") != std::string::npos)
@@ -175,6 +155,7 @@ std::size_t voxel_size(VoxelType type)
     case VoxelType::uint8: return 1;
     case VoxelType::uint16: return 2;
     case VoxelType::float32: return 4;
+    case VoxelType::int16: return 2;
     }
     return 1;
 }
@@ -185,6 +166,7 @@ const char* to_string(VoxelType type)
     case VoxelType::uint8: return "unsigned char";
     case VoxelType::uint16: return "unsigned short";
     case VoxelType::float32: return "float";
+    case VoxelType::int16: return "short";
     }
     return "?";
 }
@@ -204,6 +186,31 @@ Volume make_volume(std::array<std::size_t, 3> size, VoxelType type)
     v.type = type;
     v.data.assign(v.voxel_count() * voxel_size(type), 0);
     return v;
+}
+
+bool is_singular(const glm::dmat3& m)
+{
+    const double scale = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
+    return !(std::abs(glm::determinant(m)) > 1e-12 * scale);
+}
+
+std::string volume_defect(const Volume& v)
+{
+    std::uint64_t count = 1;
+    for (const std::size_t s : v.size) {
+        if (s == 0) return "refusing to write a volume with a zero size";
+        if (count > std::numeric_limits<std::uint64_t>::max() / s) return "the volume's voxel count overflows";
+        count *= s;
+    }
+    if (count > std::numeric_limits<std::uint64_t>::max() / voxel_size(v.type) || v.data.size() != count * voxel_size(v.type))
+        return "data holds " + std::to_string(v.data.size()) + " bytes, size and type need " + std::to_string(count * voxel_size(v.type));
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (!std::isfinite(v.directions[c][r])) return "directions (the voxel steps): non-finite component";
+    if (is_singular(v.directions)) return "directions (the voxel steps): singular, the axes do not span 3D space";
+    if (!std::isfinite(v.origin.x) || !std::isfinite(v.origin.y) || !std::isfinite(v.origin.z))
+        return "origin: non-finite component";
+    return {};
 }
 
 // ---- header layer ----------------------------------------------------------------------------------
@@ -231,8 +238,10 @@ VoxelType NrrdHeader::type() const
     if (t == "uchar" || t == "unsigned char" || t == "uint8" || t == "uint8_t") return VoxelType::uint8;
     if (t == "ushort" || t == "unsigned short" || t == "unsigned short int" || t == "uint16" || t == "uint16_t")
         return VoxelType::uint16;
+    if (t == "short" || t == "short int" || t == "signed short" || t == "signed short int" || t == "int16" || t == "int16_t")
+        return VoxelType::int16;
     if (t == "float") return VoxelType::float32;
-    fail("type", quote_text(t) + " is not supported (unsigned char, unsigned short or float)");
+    fail("type", quote_text(t) + " is not supported (unsigned char, unsigned short, short or float)");
 }
 
 std::vector<std::uint64_t> NrrdHeader::sizes() const

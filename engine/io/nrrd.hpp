@@ -1,7 +1,7 @@
 // NRRD files (the format 3D Slicer, VTK and ITK read): volumes, label maps, and single echographic
 // images placed in a volume's space (sizes W H 1, DESIGN.md §3).
 //
-// What we write: NRRD0004, one volume of uint8 / uint16 / float voxels, dimension 3, space
+// What we write: NRRD0004, one volume of uint8 / uint16 / int16 / float voxels, dimension 3, space
 // left-posterior-superior, space directions and origin in millimetres, kinds domain domain domain,
 // little endian, raw or gzip, then key/value pairs (label maps list their tissue codes there).
 // What we read: that, and what Slicer writes: fields in any order, RAS or LAS spaces converted to
@@ -40,7 +40,8 @@ public:
 // 8 GiB: read_nrrd refuses larger voxel data before allocating any of it.
 inline constexpr std::uint64_t default_nrrd_memory_budget = std::uint64_t(8) << 30;
 
-enum class VoxelType : std::uint8_t { uint8, uint16, float32 };
+// int16: the signed short volumes ITK and Slicer write (MET_SHORT, NRRD "short").
+enum class VoxelType : std::uint8_t { uint8, uint16, float32, int16 };
 
 std::size_t voxel_size(VoxelType type);  // [bytes]
 const char* to_string(VoxelType type);   // the NRRD type name we write: "unsigned char", ...
@@ -49,10 +50,12 @@ template <class T>
 constexpr VoxelType voxel_type_of()
 {
     using U = std::remove_const_t<T>;
-    static_assert(std::is_same_v<U, std::uint8_t> || std::is_same_v<U, std::uint16_t> || std::is_same_v<U, float>,
-                  "voxels are std::uint8_t, std::uint16_t or float");
+    static_assert(std::is_same_v<U, std::uint8_t> || std::is_same_v<U, std::uint16_t> || std::is_same_v<U, std::int16_t> ||
+                      std::is_same_v<U, float>,
+                  "voxels are std::uint8_t, std::uint16_t, std::int16_t or float");
     if constexpr (std::is_same_v<U, std::uint8_t>) return VoxelType::uint8;
     else if constexpr (std::is_same_v<U, std::uint16_t>) return VoxelType::uint16;
+    else if constexpr (std::is_same_v<U, std::int16_t>) return VoxelType::int16;
     else return VoxelType::float32;
 }
 
@@ -96,6 +99,13 @@ private:
 
 // A zero-filled volume of the given size and type, identity geometry.
 Volume make_volume(std::array<std::size_t, 3> size, VoxelType type);
+
+// True when the axes do not span 3D space (relative to their lengths).
+bool is_singular(const glm::dmat3& directions);
+
+// Why a volume cannot be written in any format (a zero size, data not matching size and type,
+// non-finite or singular geometry), or empty when it can. Keys are each format's business.
+std::string volume_defect(const Volume& volume);
 
 // Throws NrrdError naming the file (and the field) when the volume is inconsistent (data size,
 // non-finite or singular geometry, bad key) or the file cannot be written; leaves no file behind.

@@ -1,6 +1,8 @@
 #include "io/plus_sequence.hpp"
 
 #include "core/parse_number.hpp"
+#include "io/metaimage.hpp"
+#include "io/metaimage.hpp"
 #include "io/nrrd.hpp"
 #include "io/partial_file.hpp"
 #include "io/text_fields.hpp"
@@ -22,7 +24,6 @@
 namespace echosim::io {
 namespace {
 
-using text::bytes_left;
 using text::format_double;
 using text::quote_text;
 using text::split_whitespace;
@@ -44,11 +45,6 @@ std::string frame_label(std::size_t frame)
     char digits[24];
     std::snprintf(digits, sizeof digits, "%04zu", frame);
     return std::string(frame_prefix) + digits;
-}
-
-bool read_line(std::istream& in, std::string& line, const std::filesystem::path& path)
-{
-    return text::read_header_line<PlusSequenceError>(in, line, path, "sequence");
 }
 
 using FieldMap = std::map<std::string, std::string, std::less<>>;
@@ -236,6 +232,8 @@ struct FrameGeometry {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::uint64_t count = 0;
+    std::vector<std::uint64_t> sizes;  // as the file gives them
+    std::size_t list_axis = 0;         // the one that counts the frames
 };
 
 // W H N, or W H 1 N; with kinds, the list (or time) axis holds the frames wherever it is.
@@ -250,6 +248,7 @@ FrameGeometry frame_geometry(const std::filesystem::path& path, std::string_view
     }
     std::vector<std::uint64_t> spatial;
     std::optional<std::uint64_t> count;
+    std::size_t list_axis = sizes.empty() ? 0 : sizes.size() - 1;
     if (kinds_text) {
         const auto kinds = split_whitespace(*kinds_text);
         if (kinds.size() != sizes.size())
@@ -257,7 +256,7 @@ FrameGeometry frame_geometry(const std::filesystem::path& path, std::string_view
         for (std::size_t a = 0; a < kinds.size(); ++a) {
             const std::string kind = upper(kinds[a]);
             if (kind == "DOMAIN" || kind == "SPACE") spatial.push_back(sizes[a]);
-            else if ((kind == "LIST" || kind == "TIME") && !count) count = sizes[a];
+            else if ((kind == "LIST" || kind == "TIME") && !count) count = sizes[a], list_axis = a;
             else fail_field(path, kinds_field, quote_text(kinds[a]) + " axis: frames must be single-channel 2D images in a list");
         }
     } else if (sizes.size() == 3 || sizes.size() == 4) {
@@ -268,7 +267,29 @@ FrameGeometry frame_geometry(const std::filesystem::path& path, std::string_view
         fail_field(path, sizes_field, quote_text(sizes_text) + ": expected W H N (or W H 1 N) for N frames of W x H pixels");
     if (spatial[0] > std::numeric_limits<std::uint32_t>::max() || spatial[1] > std::numeric_limits<std::uint32_t>::max())
         fail_field(path, sizes_field, "a frame wider or taller than 2^32 pixels");
-    return {std::uint32_t(spatial[0]), std::uint32_t(spatial[1]), *count};
+    return {std::uint32_t(spatial[0]), std::uint32_t(spatial[1]), *count, sizes, list_axis};
+}
+
+// The pixels frame after frame, whichever axis of the file counts the frames (`kinds: list domain
+// domain` puts them first: pixel (x, y) of frame f then lies at f + N * (x + W * y)).
+void frames_last(Sweep& sweep, const FrameGeometry& g)
+{
+    if (g.list_axis + 1 == g.sizes.size() || g.count == 1) return;
+    std::vector<std::uint64_t> stride(g.sizes.size(), 1);
+    for (std::size_t a = 1; a < g.sizes.size(); ++a) stride[a] = stride[a - 1] * g.sizes[a - 1];
+    std::vector<std::size_t> spatial;  // the axes of x and y, in order
+    for (std::size_t a = 0; a < g.sizes.size(); ++a)
+        if (a != g.list_axis) spatial.push_back(a);
+    const std::size_t es = voxel_size(sweep.pixel_type);
+    std::vector<std::uint8_t> out(sweep.pixels.size());
+    std::size_t at = 0;
+    for (std::uint64_t f = 0; f < g.count; ++f)
+        for (std::uint64_t y = 0; y < g.height; ++y)
+            for (std::uint64_t x = 0; x < g.width; ++x, at += es) {
+                const std::uint64_t from = f * stride[g.list_axis] + x * stride[spatial[0]] + y * stride[spatial[1]];
+                std::copy_n(sweep.pixels.data() + from * es, es, out.data() + at);
+            }
+    sweep.pixels.swap(out);
 }
 
 std::uint64_t pixel_bytes(const std::filesystem::path& path, std::string_view sizes_field, const FrameGeometry& g,
@@ -305,114 +326,43 @@ PlusRecording start_recording(const std::filesystem::path& path, const SequenceH
     return r;
 }
 
-// The pixels from a zlib stream of at most `packed` bytes, streamed: the compressed data is never
-// held whole, and the pixels grow only as the stream delivers them.
-std::vector<std::uint8_t> inflate_pixels(const std::filesystem::path& path, std::istream& in, std::uint64_t bytes,
-                                         std::uint64_t packed)
+// The frames' pixel type, from a MetaImage ElementType.
+VoxelType sweep_pixel_type(const MetaImageHeader& meta)
 {
-    const std::string dim_size = std::to_string(bytes) + " bytes DimSize gives";
-    const std::string corrupt = "compressed pixel data fails to inflate (corrupt or truncated): ";
-    Inflated pixels;
-    try {
-        pixels = inflate_exactly(in, bytes, packed);
-    } catch (const ZlibError& e) {
-        const std::string produced = std::to_string(e.produced());
-        if (e.kind() == ZlibError::Kind::ended_early)
-            fail_field(path, "CompressedData", "the compressed pixels inflate to " + produced + " bytes, DimSize needs " +
-                                                   std::to_string(bytes));
-        if (e.kind() == ZlibError::Kind::input_ended && e.produced() == bytes)
-            fail_field(path, "CompressedData",
-                       "the compressed pixels do not end after the " + dim_size + " (more data, or a cut stream)");
-        if (e.kind() == ZlibError::Kind::input_ended)
-            fail_field(path, "CompressedData", corrupt + "the data ends after " + produced + " of the " + dim_size);
-        if (e.kind() == ZlibError::Kind::corrupt) fail_field(path, "CompressedData", corrupt + e.what());
-        fail_field(path, "CompressedData", e.what());
+    switch (meta.element_type()) {
+    case MetElementType::met_uchar: return VoxelType::uint8;
+    case MetElementType::met_ushort: return VoxelType::uint16;
+    case MetElementType::met_short: return VoxelType::int16;
+    case MetElementType::met_float: return VoxelType::float32;
+    case MetElementType::met_char:
+    case MetElementType::met_double: break;
     }
-    if (pixels.beyond > 0)
-        fail_field(path, "CompressedData", "the compressed pixels do not end after the " + dim_size + ": they hold " +
-                                               std::to_string(pixels.beyond) + " bytes more");
-    return std::move(pixels.data);
+    meta.fail("ElementType", quote_text(meta.require("ElementType").value) +
+                                 " frames are not supported: MET_UCHAR, MET_USHORT, MET_SHORT or MET_FLOAT");
 }
 
 PlusRecording read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
 {
-    // the text header, up to ElementDataFile: the last field, after which the pixels start
+    const MetaImageHeader meta = read_metaimage_header(in, path);
     SequenceHeader header;
-    std::string line;
-    for (std::size_t number = 1;; ++number) {
-        if (!read_line(in, line, path)) fail(path, "truncated header: the file ends before 'ElementDataFile = LOCAL'");
-        if (trim(line).empty()) continue;
-        const auto eq = line.find('=');
-        if (eq == std::string::npos)
-            fail(path, "header line " + std::to_string(number) + " is not 'Name = Value': " + quote_text(line) +
-                           " (not a MetaImage sequence file?)");
-        const std::string_view name = trim(std::string_view(line).substr(0, eq));
-        const std::string_view value = trim(std::string_view(line).substr(eq + 1));
-        if (name == "ElementDataFile") {
-            if (upper(value) != "LOCAL")
-                fail_field(path, name, "detached pixel data (" + quote_text(value) +
-                                           ") is not supported: use a .mha with ElementDataFile = LOCAL");
-            break;
-        }
-        add_field(path, header, name, std::string(value));
-    }
+    for (const MetaImageField& f : meta.fields())
+        if (f.name != "ElementDataFile") add_field(path, header, f.name, f.value);
 
     // what the pixels are
-    const auto require = [&](std::string_view name) -> const std::string& {
-        if (const std::string* v = header.file_field(name)) return *v;
-        fail_field(path, name, "missing");
-    };
-    const auto expect = [&](std::string_view name, std::string_view wanted, const std::string& why) {
-        if (const std::string* v = header.file_field(name); v && upper(*v) != upper(wanted))
-            fail_field(path, name, quote_text(*v) + ": " + why);
-    };
-    expect("ObjectType", "Image", "not an image sequence");
-    expect("BinaryData", "True", "only binary pixel data is supported");
-    expect("ElementNumberOfChannels", "1", "only single-channel (greyscale) frames are supported");
-    if (const std::string& type = require("ElementType"); type != "MET_UCHAR")
-        fail_field(path, "ElementType", quote_text(type) + " is not supported: only MET_UCHAR (8-bit greyscale)");
-    const std::string& dims = require("DimSize");
-    if (const std::string* ndims = header.file_field("NDims")) {
-        std::uint64_t n = 0;
-        if (!parse_number(*ndims, n) || n != split_whitespace(dims).size())
-            fail_field(path, "NDims", quote_text(*ndims) + " does not match DimSize " + quote_text(dims));
-    }
+    if (const auto* o = meta.find("ObjectType"); o && upper(o->value) != "IMAGE")
+        meta.fail("ObjectType", quote_text(o->value) + ": not an image sequence");
+    if (meta.channels() != 1) meta.fail("ElementNumberOfChannels", "only single-channel (greyscale) frames are supported");
+    const VoxelType type = sweep_pixel_type(meta);
+    const std::string& dims = meta.require("DimSize").value;
+    meta.dim_size();  // checks DimSize against NDims
     const FrameGeometry geometry = frame_geometry(path, "DimSize", dims, "Kinds", header.file_field("Kinds"));
-    bool compressed = false;
-    if (const std::string* c = header.file_field("CompressedData")) {
-        if (upper(*c) != "TRUE" && upper(*c) != "FALSE")
-            fail_field(path, "CompressedData", quote_text(*c) + " is neither True nor False");
-        compressed = upper(*c) == "TRUE";
-    }
-
     PlusRecording recording = start_recording(path, header, geometry, "UltrasoundImageOrientation",
-                                              header.file_field("UltrasoundImageOrientation"), VoxelType::uint8);
-    Sweep& sweep = recording.images;
-    const std::uint64_t bytes = pixel_bytes(path, "DimSize", geometry, 1, budget);
+                                              header.file_field("UltrasoundImageOrientation"), type);
+    pixel_bytes(path, "DimSize", geometry, voxel_size(type), budget);
     recording.frames = record_frames(path, header, geometry.count, "DimSize");
-
-    // the pixels, checked against what is left of the file before allocating
-    if (!compressed) {
-        std::uint64_t found = 0;
-        auto pixels = text::read_exactly(in, bytes, found);
-        if (!pixels)
-            fail_field(path, "ElementDataFile", "truncated pixel data: " + std::to_string(found) +
-                                                    " bytes after the header, DimSize needs " + std::to_string(bytes));
-        sweep.pixels = std::move(*pixels);
-        return recording;
-    }
-    const std::uint64_t left = bytes_left(in);
-    std::uint64_t packed = left;
-    if (const std::string* size = header.file_field("CompressedDataSize")) {
-        std::uint64_t n = 0;
-        if (!parse_number(*size, n) || n == 0)
-            fail_field(path, "CompressedDataSize", quote_text(*size) + " is not a positive integer");
-        if (n > left)
-            fail_field(path, "CompressedDataSize", "truncated pixel data: " + *size + " compressed bytes announced, " +
-                                                       std::to_string(left) + " left in the file");
-        packed = n;
-    }
-    sweep.pixels = inflate_pixels(path, in, bytes, packed);
+    // the pixels, their size checked against the budget and the file before allocating
+    recording.images.pixels = read_metaimage_data(in, meta, budget);
+    frames_last(recording.images, geometry);
     return recording;
 }
 
@@ -431,6 +381,7 @@ PlusRecording read_seq_nrrd(const std::filesystem::path& path, std::istream& in,
     pixel_bytes(path, "sizes", geometry, voxel_size(type), budget);
     recording.frames = record_frames(path, header, geometry.count, "sizes");
     recording.images.pixels = read_nrrd_data(in, nrrd, budget);
+    frames_last(recording.images, geometry);
     return recording;
 }
 
@@ -439,6 +390,7 @@ const char* metaimage_type(VoxelType type)
     switch (type) {
     case VoxelType::uint8: return "MET_UCHAR";
     case VoxelType::uint16: return "MET_USHORT";
+    case VoxelType::int16: return "MET_SHORT";
     case VoxelType::float32: return "MET_FLOAT";
     }
     return "MET_UCHAR";
@@ -518,7 +470,11 @@ PlusRecording read_plus_recording(const std::filesystem::path& path, std::uint64
     in.seekg(0);
     PlusRecording r;
     if (std::string_view(magic, sizeof magic) != "NRRD") {
-        r = read_mha(path, in, memory_budget_bytes);
+        try {
+            r = read_mha(path, in, memory_budget_bytes);
+        } catch (const MetaImageError& e) {
+            throw PlusSequenceError(e.what());  // one error type for callers; the message already names file and field
+        }
     } else {
         try {
             r = read_seq_nrrd(path, in, memory_budget_bytes);

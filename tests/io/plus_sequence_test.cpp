@@ -354,7 +354,7 @@ TEST(PlusSequence, RejectsBadMhaNamingFrameAndField)
     expect_mha_error("timestamp.mha", with_line(good, "Seq_Frame0001_Timestamp", ""), {"Seq_Frame0001_Timestamp", "missing"});
     expect_mha_error("twice.mha", with(good, "Seq_Frame0001_Timestamp", "Seq_Frame1_Timestamp = 3\nSeq_Frame0001_Timestamp"),
                      {"Seq_Frame0001_Timestamp", "twice"});
-    expect_mha_error("ushort.mha", with(good, "ElementType = MET_UCHAR", "ElementType = MET_USHORT"), {"ElementType", "'MET_USHORT'", "MET_UCHAR"});
+    expect_mha_error("double.mha", with(good, "ElementType = MET_UCHAR", "ElementType = MET_DOUBLE"), {"ElementType", "'MET_DOUBLE'", "MET_UCHAR"});
     expect_mha_error("rgb.mha", with(good, "ElementNumberOfChannels = 1", "ElementNumberOfChannels = 3"), {"ElementNumberOfChannels"});
     expect_mha_error("detached.mha", with(good, "ElementDataFile = LOCAL", "ElementDataFile = sweep.raw"), {"ElementDataFile", "detached"});
     expect_mha_error("nodims.mha", with_line(good, "DimSize", ""), {"DimSize", "missing"});
