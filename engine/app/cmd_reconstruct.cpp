@@ -2,7 +2,9 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
-
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -10,79 +12,228 @@
 #include "echo/phantom.hpp"
 #include "echo/reconstruct.hpp"
 #include "io/nrrd.hpp"
+#include "io/plus_config.hpp"
 #include "io/plus_sequence.hpp"
+#include "io/transform_repository.hpp"
+#include "io/volume_file.hpp"
 
 namespace echosim::app {
 
 std::filesystem::path label_sweep_path(const std::filesystem::path& sweep);  // cmd_phantom.cpp
 
+namespace {
+
+// What reconstruction is asked for: echosim's defaults, then the PLUS configuration's, then the
+// command line's, each over the one before.
+struct Plan {
+    io::TransformRepository calibration;
+    std::string image_frame = "Image";
+    std::string reference_frame;  // empty: Reference, or Tracker when the recording names only that
+    echo::ReconstructOptions options;
+    glm::dvec3 spacing{0.3};
+    bool fill_holes = true;
+    bool plus_grid = false;
+    std::optional<std::array<int, 6>> extent;  // with origin: the grid the configuration fixes
+    glm::dvec3 origin{0.0};
+    std::vector<std::string> warnings;
+};
+
+Plan make_plan(const ReconstructArgs& args)
+{
+    Plan plan;
+    plan.options.memory_budget_bytes = std::uint64_t(args.budget_mb) << 20;
+    if (!args.config.empty()) {
+        const io::PlusConfig config = io::read_plus_config(args.config);
+        plan.warnings = config.warnings;
+        for (const io::PlusConfigTransform& t : config.transforms) {
+            try {
+                plan.calibration.set(t.from, t.to, t.matrix, t.valid);
+            } catch (const io::TransformError& e) {
+                throw io::PlusConfigError(args.config.string() + ":" + std::to_string(t.line) + ": Transform: " + e.what());
+            }
+        }
+        // PLUS's VolumeReconstructor defaults: nearest neighbour, mean, no hole filling, its grid
+        plan.options.splat = echo::Splat::nearest;
+        plan.fill_holes = false;
+        plan.plus_grid = true;
+        if (const auto& r = config.reconstruction) {
+            if (r->output_spacing) plan.spacing = *r->output_spacing;
+            if (r->output_origin) plan.origin = *r->output_origin, plan.extent = r->output_extent;
+            if (r->clip_size && (*r->clip_size)[0] > 0 && (*r->clip_size)[1] > 0) {
+                const auto& o = *r->clip_origin;
+                const auto& s = *r->clip_size;
+                plan.options.clip = {std::uint32_t(o[0]), std::uint32_t(o[1]), std::uint32_t(o[0] + s[0]), std::uint32_t(o[1] + s[1])};
+            }
+            if (r->interpolation)
+                plan.options.splat = *r->interpolation == io::PlusInterpolation::linear ? echo::Splat::trilinear : echo::Splat::nearest;
+            if (r->compounding)
+                plan.options.compounding = *r->compounding == io::PlusCompounding::maximum ? echo::Compounding::max
+                                           : *r->compounding == io::PlusCompounding::latest ? echo::Compounding::latest
+                                                                                            : echo::Compounding::mean;
+            if (r->fill_holes) plan.fill_holes = *r->fill_holes;
+            if (r->pixel_rejection_threshold) plan.options.pixel_threshold = *r->pixel_rejection_threshold;
+            plan.image_frame = r->image_frame;
+            plan.reference_frame = r->reference_frame;
+        }
+    }
+    if (!args.image_to_reference.empty()) {
+        if (const auto names = io::split_transform_name(args.image_to_reference)) {
+            plan.image_frame = names->first;
+            plan.reference_frame = names->second;
+        } else {
+            plan.reference_frame = args.image_to_reference;
+        }
+    }
+    if (args.voxel_mm) plan.spacing = glm::dvec3(*args.voxel_mm);
+    if (args.splat) plan.options.splat = *args.splat == "nearest" ? echo::Splat::nearest : echo::Splat::trilinear;
+    if (args.compound)
+        plan.options.compounding = *args.compound == "max"      ? echo::Compounding::max
+                                   : *args.compound == "latest" ? echo::Compounding::latest
+                                                                : echo::Compounding::mean;
+    if (args.fill_holes) plan.fill_holes = *args.fill_holes == "on";
+    if (args.grid) plan.plus_grid = *args.grid == "plus";
+    if (args.voxel_mm && plan.extent) {
+        plan.warnings.push_back(args.config.string() + ": OutputOrigin and OutputExtent are for the configuration's OutputSpacing; "
+                                "with --voxel-mm the grid is made from the frames instead");
+        plan.extent.reset();
+    }
+    plan.options.voxel_mm = std::min({plan.spacing.x, plan.spacing.y, plan.spacing.z});
+    return plan;
+}
+
+const char* name_of(echo::Splat s) { return s == echo::Splat::nearest ? "nearest neighbour" : "trilinear"; }
+const char* name_of(echo::Compounding c)
+{
+    return c == echo::Compounding::mean ? "mean" : c == echo::Compounding::max ? "maximum" : "latest";
+}
+
+std::filesystem::path labels_path(const std::filesystem::path& out)
+{
+    std::filesystem::path p = out;
+    p.replace_filename(out.stem().string() + ".labels" + out.extension().string());
+    return p;
+}
+
+}  // namespace
+
 int run_reconstruct(const ReconstructArgs& args)
 {
     using clock = std::chrono::steady_clock;
     if (!output_folder_exists("reconstruct", "--out", args.out)) return kExitBadInput;
+    Plan plan;
     io::Sweep sweep, labels;
     try {
-        sweep = io::read_plus_sequence(args.sweep);
+        plan = make_plan(args);
+        const io::PlusRecording recording = io::read_plus_recording(args.sweep);
+        if (plan.reference_frame.empty() && args.config.empty()) {
+            sweep = io::read_plus_sequence(args.sweep);  // Reference, else Tracker, as the recording names them
+        } else {
+            if (plan.reference_frame.empty()) plan.reference_frame = "Reference";
+            sweep = io::resolve_sweep(args.sweep, recording, plan.calibration, plan.image_frame, plan.reference_frame);
+        }
         if (std::filesystem::exists(label_sweep_path(args.sweep))) labels = io::read_plus_sequence(label_sweep_path(args.sweep));
-    } catch (const io::PlusSequenceError& e) {
+    } catch (const std::runtime_error& e) {  // the file readers' errors, each naming its file and field
         std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
         return kExitBadInput;
     }
-    const bool with_labels = labels.frames.size() == sweep.frames.size() && labels.width == sweep.width && labels.height == sweep.height;
+    for (const std::string& w : plan.warnings) std::fprintf(stderr, "echosim reconstruct: warning: %s\n", w.c_str());
+    const bool with_labels = labels.frames.size() == sweep.frames.size() && labels.width == sweep.width &&
+                             labels.height == sweep.height && labels.pixel_type == io::VoxelType::uint8;
 
-    const auto valid = std::size_t(std::count_if(sweep.frames.begin(), sweep.frames.end(), [](const auto& f) { return f.valid; }));
-    if (valid == 0) {
-        std::fprintf(stderr, "echosim reconstruct: %s: no frame has a valid transform\n", args.sweep.c_str());
+    std::vector<glm::dmat4> valid_transforms;
+    std::size_t bad_images = 0, bad_transforms = 0;
+    for (const io::TrackedFrame& f : sweep.frames) {
+        if (f.valid) valid_transforms.push_back(f.image_to_reference);
+        else if (!f.image_valid) ++bad_images;
+        else ++bad_transforms;
+    }
+    if (bad_images + bad_transforms > 0)
+        std::fprintf(stderr, "echosim reconstruct: %zu of %zu frames skipped: %zu with an image not OK, %zu with a transform not OK\n",
+                     bad_images + bad_transforms, sweep.frames.size(), bad_images, bad_transforms);
+    if (valid_transforms.empty()) {
+        std::fprintf(stderr, "echosim reconstruct: %s: no frame has a valid image and transform\n", args.sweep.c_str());
         return kExitBadInput;
     }
-    const echo::SweepBox box = echo::sweep_box(sweep);
-    echo::ReconstructOptions options;
-    options.voxel_mm = args.voxel_mm;
-    options.splat = args.splat == "nearest" ? echo::Splat::nearest : echo::Splat::trilinear;
-    options.compounding = args.compound == "max" ? echo::Compounding::max : echo::Compounding::mean;
-    options.memory_budget_bytes = std::uint64_t(args.budget_mb) << 20;
-    const glm::dvec3 margin(options.voxel_mm);
+
+    echo::ReconstructOptions& options = plan.options;
+    options.output_type = sweep.pixel_type;  // the volume keeps the recording's values, as PLUS's does
     std::unique_ptr<echo::Reconstructor> r;
     try {
-        r = std::make_unique<echo::Reconstructor>(box.lo - margin, box.hi + margin, options, box.axes);
-    } catch (const std::runtime_error& e) {
+        echo::VoxelGrid grid;
+        if (plan.extent) {
+            const auto& e = *plan.extent;
+            grid.spacing = plan.spacing;
+            grid.origin = plan.origin + plan.spacing * glm::dvec3(e[0], e[2], e[4]);
+            grid.size = {std::size_t(e[1] - e[0] + 1), std::size_t(e[3] - e[2] + 1), std::size_t(e[5] - e[4] + 1)};
+        } else if (plan.plus_grid) {
+            grid = echo::plus_grid(valid_transforms, sweep.width, sweep.height, options.clip, plan.spacing);
+        } else {
+            const echo::SweepBox box = echo::sweep_box(valid_transforms, sweep.width, sweep.height);
+            const glm::dvec3 margin(options.voxel_mm);
+            grid = echo::box_grid(box.lo - margin, box.hi + margin, options.voxel_mm, box.axes);
+        }
+        r = std::make_unique<echo::Reconstructor>(grid, options);
+    } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
         return kExitBadInput;
     }
+    const echo::VoxelGrid& grid = r->grid();
+    std::printf("echosim reconstruct: %s interpolation, %s compounding, holes %s; %s grid %zux%zux%zu of %g x %g x %g mm in %s\n",
+                name_of(options.splat), name_of(options.compounding), plan.fill_holes ? "filled" : "left empty",
+                plan.extent ? "the configuration's" : plan.plus_grid ? "PLUS's" : "a sweep-aligned", grid.size[0], grid.size[1],
+                grid.size[2], grid.spacing.x, grid.spacing.y, grid.spacing.z,
+                plan.reference_frame.empty() ? "the reference frame" : plan.reference_frame.c_str());
 
     const auto t0 = clock::now();
+    std::size_t inserted = 0;
     for (std::size_t f = 0; f < sweep.frames.size(); ++f) {
         if (!sweep.frames[f].valid) continue;
-        const std::span<const std::uint8_t> px(sweep.frame_pixels(f), sweep.frame_bytes());
+        const echo::FramePixels px{{sweep.frame_pixels(f), sweep.frame_bytes()}, sweep.pixel_type, sweep.width, sweep.height};
         const std::span<const std::uint8_t> lb = with_labels ? std::span<const std::uint8_t>(labels.frame_pixels(f), labels.frame_bytes())
                                                              : std::span<const std::uint8_t>();
-        r->insert(px, lb, sweep.width, sweep.height, sweep.frames[f].image_to_reference);
-        if ((f + 1) % 20 == 0 || f + 1 == sweep.frames.size())
-            std::fprintf(stderr, "\rechosim reconstruct: inserted %zu of %zu frames", f + 1, sweep.frames.size());
+        r->insert(px, lb, sweep.frames[f].image_to_reference);
+        ++inserted;
+        if (inserted % 20 == 0 || inserted == valid_transforms.size())
+            std::fprintf(stderr, "\rechosim reconstruct: inserted %zu of %zu frames", inserted, valid_transforms.size());
     }
     const double insert_s = std::chrono::duration<double>(clock::now() - t0).count();
     std::fprintf(stderr, "\n");
     const double covered = double(r->filled_voxels()) / double(r->voxel_count());
-    const auto t1 = clock::now();
-    const int passes = r->fill_holes([](double done) { std::fprintf(stderr, "\rechosim reconstruct: holes filled %3.0f %%", 100 * done); });
-    const double fill_s = std::chrono::duration<double>(clock::now() - t1).count();
-    std::fprintf(stderr, "\n");
+    int passes = 0;
+    double fill_s = 0;
+    if (plan.fill_holes) {
+        const auto t1 = clock::now();
+        passes = r->fill_holes([](double done) { std::fprintf(stderr, "\rechosim reconstruct: holes filled %3.0f %%", 100 * done); });
+        fill_s = std::chrono::duration<double>(clock::now() - t1).count();
+        std::fprintf(stderr, "\n");
+    }
 
     io::Volume volume = r->volume();
     volume.key_values["echosim_source"] = args.sweep.filename().string();
-    io::write_nrrd(args.out, volume, args.gzip);
-    std::printf("echosim reconstruct: %zux%zux%zu voxels of %.2f mm (%llu MiB while working) in %s\n", volume.size[0], volume.size[1],
-                volume.size[2], options.voxel_mm, static_cast<unsigned long long>(r->memory_bytes() >> 20), args.out.c_str());
-    std::printf("echosim reconstruct: %zu frames in %.2f s (%.0f frames/s), %.1f %% of voxels hit, %.1f %% after filling holes "
-                "(%d passes, %.2f s)\n",
-                valid, insert_s, double(valid) / insert_s, 100 * covered, 100.0 * double(r->filled_voxels()) / double(r->voxel_count()),
-                passes, fill_s);
+    try {
+        io::write_volume(args.out, volume, args.gzip);
+    } catch (const std::runtime_error& e) {
+        std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
+        return kExitFailure;
+    }
+    std::printf("echosim reconstruct: %zux%zux%zu voxels (%llu MiB while working) in %s\n", volume.size[0], volume.size[1],
+                volume.size[2], static_cast<unsigned long long>(r->memory_bytes() >> 20), args.out.c_str());
+    std::printf("echosim reconstruct: %zu frames in %.2f s (%.0f frames/s), %.1f %% of voxels hit", inserted, insert_s,
+                double(inserted) / insert_s, 100 * covered);
+    if (plan.fill_holes)
+        std::printf(", %.1f %% after filling holes (%d passes, %.2f s)", 100.0 * double(r->filled_voxels()) / double(r->voxel_count()),
+                    passes, fill_s);
+    std::printf("\n");
     if (with_labels) {
         io::Volume l = r->labels();
         for (int t = 0; t < echo::kTissueCount; ++t) l.key_values["label_" + std::to_string(t)] = echo::tissue_name(echo::Tissue(t));
-        std::filesystem::path lp = args.out;
-        lp.replace_filename(args.out.stem().string() + ".labels.nrrd");
-        io::write_nrrd(lp, l, true);
+        const std::filesystem::path lp = labels_path(args.out);
+        try {
+            io::write_volume(lp, l, true);
+        } catch (const std::runtime_error& e) {
+            std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
+            return kExitFailure;
+        }
         std::printf("echosim reconstruct: labels in %s\n", lp.c_str());
     }
     return kExitOk;

@@ -76,12 +76,17 @@ struct PhantomArgs {
 };
 int run_phantom(const PhantomArgs& args);
 
+// Options left empty take the PLUS configuration's value (with --config), else echosim's default.
 struct ReconstructArgs {
     std::filesystem::path sweep;
-    std::filesystem::path out;
-    double voxel_mm = 0.3;
-    std::string splat = "trilinear";
-    std::string compound = "mean";
+    std::filesystem::path out;                // .nrrd or .mha
+    std::filesystem::path config;             // PLUS device-set configuration (empty: none)
+    std::string image_to_reference;           // the frame to reconstruct in, or FromToTo (empty: Reference)
+    std::optional<double> voxel_mm;           // default 0.3, or the configuration's OutputSpacing
+    std::optional<std::string> splat;         // nearest | trilinear
+    std::optional<std::string> compound;      // mean | max | latest
+    std::optional<std::string> fill_holes;    // on | off
+    std::optional<std::string> grid;          // plus | sweep (default: plus with --config, else sweep)
     std::uint64_t budget_mb = 4096;
     bool gzip = false;
 };

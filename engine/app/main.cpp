@@ -75,14 +75,26 @@ int main(int argc, char** argv)
     phantom_cmd->add_flag("--compressed", phantom.compressed, "zlib-compress the pixels");
 
     ReconstructArgs reconstruct;
-    auto* reconstruct_cmd = app.add_subcommand("reconstruct", "freehand 3D reconstruction of a tracked sweep into an NRRD volume");
-    reconstruct_cmd->add_option("--sweep", reconstruct.sweep, "PLUS sequence (.mha or .seq.nrrd)")->required();
-    reconstruct_cmd->add_option("--out", reconstruct.out, "volume to write (.nrrd); labels beside it when the sweep has them")->required();
-    reconstruct_cmd->add_option("--voxel-mm", reconstruct.voxel_mm, "voxel size [mm]")->check(CLI::Range(0.02, 10.0));
-    reconstruct_cmd->add_option("--splat", reconstruct.splat, "nearest or trilinear")->check(CLI::IsMember({"nearest", "trilinear"}));
-    reconstruct_cmd->add_option("--compound", reconstruct.compound, "mean or max")->check(CLI::IsMember({"mean", "max"}));
+    auto* reconstruct_cmd = app.add_subcommand("reconstruct", "freehand 3D reconstruction of a tracked sweep (PLUS recording) into a volume");
+    reconstruct_cmd->add_option("--sweep", reconstruct.sweep, "PLUS sequence (.mha, .igs.mha, .seq.nrrd, .igs.nrrd)")->required();
+    reconstruct_cmd->add_option("--out", reconstruct.out, "volume to write (.nrrd or .mha); labels beside it when the sweep has them")->required();
+    reconstruct_cmd->add_option("--config", reconstruct.config,
+                                "PLUS device-set configuration (.xml): its CoordinateDefinitions and VolumeReconstruction element");
+    reconstruct_cmd->add_option("--image-to-reference", reconstruct.image_to_reference,
+                                "the frame to reconstruct in (e.g. Reference, Tracker), or a transform name such as ImageToTracker");
+    reconstruct_cmd->add_option("--voxel-mm", reconstruct.voxel_mm, "voxel size [mm] (overrides OutputSpacing)")->check(CLI::Range(0.02, 10.0));
+    reconstruct_cmd->add_option("--splat", reconstruct.splat, "nearest or trilinear (PLUS: NEAREST_NEIGHBOR or LINEAR)")
+        ->check(CLI::IsMember({"nearest", "trilinear"}));
+    reconstruct_cmd->add_option("--compound", reconstruct.compound, "mean, max or latest (PLUS: MEAN, MAXIMUM, LATEST)")
+        ->check(CLI::IsMember({"mean", "max", "latest"}));
+    reconstruct_cmd->add_option("--fill-holes", reconstruct.fill_holes, "on or off (default: on, or the configuration's FillHoles)")
+        ->check(CLI::IsMember({"on", "off"}));
+    reconstruct_cmd->add_option("--grid", reconstruct.grid,
+                                "plus: PLUS's output grid, axis-aligned in the reference frame; sweep: a box aligned with the sweep "
+                                "(default: plus with --config, else sweep)")
+        ->check(CLI::IsMember({"plus", "sweep"}));
     reconstruct_cmd->add_option("--budget-mb", reconstruct.budget_mb, "refuse volumes that need more memory [MiB]");
-    reconstruct_cmd->add_flag("--gzip", reconstruct.gzip, "gzip the volume's voxels");
+    reconstruct_cmd->add_flag("--gzip", reconstruct.gzip, "compress the volume's voxels");
 
     BenchArgs bench;
     auto* bench_cmd = app.add_subcommand("bench", "run the benchmarks and print a table");
