@@ -470,5 +470,25 @@ TEST(PlusSequence, FailedWriteLeavesNoFile)
     EXPECT_FALSE(std::filesystem::exists(nowhere));
 }
 
+
+// `kinds: list domain domain`: the frame axis first, so the file interleaves the frames' pixels;
+// pixel (x, y) of frame f is byte f + 2 * (x + 3 * y) here. Read wherever the axis stands.
+TEST(PlusSequence, ReadsTheFrameAxisWhereverItStands)
+{
+    const std::string header = with(with(seq_nrrd_header("raw"), "kinds: domain domain list", "kinds: list domain domain"), "sizes: 3 2 2",
+                                    "sizes: 2 3 2");
+    std::string data(12, '\0');
+    for (int f = 0; f < 2; ++f)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 3; ++x) data[std::size_t(f + 2 * (x + 3 * y))] = char('A' + 6 * f + 3 * y + x);
+    const auto path = temp("list_first.seq.nrrd");
+    write_bytes(path, header + data);
+    const Sweep s = read_plus_sequence(path);
+    EXPECT_EQ(s.width, 3u);
+    EXPECT_EQ(s.height, 2u);
+    EXPECT_EQ(std::string(s.pixels.begin(), s.pixels.end()), "ABCDEFGHIJKL");  // frame after frame, row after row
+    std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace echosim::io
