@@ -17,6 +17,16 @@ namespace {
 // value, weight, label, label distance: the bytes one voxel costs while reconstructing
 constexpr std::uint64_t kBytesPerVoxel = 4 + 4 + 1 + 4;
 
+template <class T>
+void widen(const std::uint8_t* at, std::size_t count, float* out)
+{
+    for (std::size_t c = 0; c < count; ++c) {
+        T v;
+        std::memcpy(&v, at + sizeof(T) * c, sizeof(T));  // frames need not be aligned for T
+        out[c] = float(v);
+    }
+}
+
 // One row of a frame as float: the pasting works on values, whatever the file stored.
 void row_values(const FramePixels& f, std::uint32_t row, std::vector<float>& out)
 {
@@ -24,26 +34,10 @@ void row_values(const FramePixels& f, std::uint32_t row, std::vector<float>& out
     const std::uint8_t* at = f.bytes.data() + std::size_t(row) * w * io::voxel_size(f.type);
     out.resize(w);
     switch (f.type) {
-    case io::VoxelType::uint8:
-        for (std::size_t c = 0; c < w; ++c) out[c] = float(at[c]);
-        return;
-    case io::VoxelType::uint16:
-        for (std::size_t c = 0; c < w; ++c) {
-            std::uint16_t v;
-            std::memcpy(&v, at + 2 * c, 2);
-            out[c] = float(v);
-        }
-        return;
-    case io::VoxelType::int16:
-        for (std::size_t c = 0; c < w; ++c) {
-            std::int16_t v;
-            std::memcpy(&v, at + 2 * c, 2);
-            out[c] = float(v);
-        }
-        return;
-    case io::VoxelType::float32:
-        std::memcpy(out.data(), at, 4 * w);
-        return;
+    case io::VoxelType::uint8: return widen<std::uint8_t>(at, w, out.data());
+    case io::VoxelType::uint16: return widen<std::uint16_t>(at, w, out.data());
+    case io::VoxelType::int16: return widen<std::int16_t>(at, w, out.data());
+    case io::VoxelType::float32: return widen<float>(at, w, out.data());
     }
 }
 

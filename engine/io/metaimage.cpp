@@ -439,19 +439,23 @@ Volume read_metaimage_volume(const std::filesystem::path& path, std::uint64_t me
     return v;
 }
 
+std::vector<std::uint8_t> deflate_metaimage_data(const std::filesystem::path& path, std::span<const std::uint8_t> data)
+{
+    std::vector<std::uint8_t> packed;
+    try {
+        deflate_stream(data, ZlibWrapper::zlib,  // the zlib format, as MetaIO and PLUS write
+                       [&](std::span<const std::uint8_t> s) { packed.insert(packed.end(), s.begin(), s.end()); });
+    } catch (const ZlibError& e) {
+        fail(path, "compressing the element data: " + std::string(e.what()));
+    }
+    return packed;
+}
+
 void write_metaimage_volume(const std::filesystem::path& path, const Volume& volume, bool compressed)
 {
     check_volume(path, volume);
     // compressed first: the header gives the compressed size
-    std::vector<std::uint8_t> packed;
-    if (compressed) {
-        try {
-            deflate_stream(volume.data, ZlibWrapper::zlib,  // the zlib format, as MetaIO writes
-                           [&](std::span<const std::uint8_t> s) { packed.insert(packed.end(), s.begin(), s.end()); });
-        } catch (const ZlibError& e) {
-            fail(path, "compressing the voxels: " + std::string(e.what()));
-        }
-    }
+    const std::vector<std::uint8_t> packed = compressed ? deflate_metaimage_data(path, volume.data) : std::vector<std::uint8_t>();
     const std::vector<std::uint8_t>& data = compressed ? packed : volume.data;
     const bool detached = text::lower(path.extension().string()) == ".mhd";
     std::filesystem::path data_path = path;

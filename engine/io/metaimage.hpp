@@ -30,6 +30,7 @@
 #include <iosfwd>
 #include <map>
 #include <stdexcept>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -121,6 +122,10 @@ std::vector<std::uint8_t> read_metaimage_data(std::istream& in, const MetaImageH
 // ..." when the stream is corrupt, cut, or holds more or fewer bytes than `sizes_field` gives.
 std::vector<std::uint8_t> inflate_metaimage_data(const std::filesystem::path& path, std::istream& in, std::uint64_t bytes,
                                                  std::uint64_t packed, std::string_view sizes_field = "DimSize");
+
+// The element data deflated as MetaIO and PLUS write it (one zlib stream), for CompressedDataSize
+// to be known before the header is written. Throws MetaImageError naming the file.
+std::vector<std::uint8_t> deflate_metaimage_data(const std::filesystem::path& path, std::span<const std::uint8_t> data);
 
 // ---- volumes ----------------------------------------------------------------------------------
 

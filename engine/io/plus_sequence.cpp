@@ -427,10 +427,9 @@ void write_plus_mha(const std::filesystem::path& path, const Sweep& sweep, bool 
     std::vector<std::uint8_t> packed;
     if (compressed) {
         try {
-            deflate_stream(sweep.pixels, ZlibWrapper::zlib,  // the zlib format, as PLUS writes
-                           [&](std::span<const std::uint8_t> s) { packed.insert(packed.end(), s.begin(), s.end()); });
-        } catch (const ZlibError& e) {
-            fail(path, "compressing the pixels: " + std::string(e.what()));
+            packed = deflate_metaimage_data(path, sweep.pixels);
+        } catch (const MetaImageError& e) {
+            throw PlusSequenceError(e.what());
         }
     }
 
