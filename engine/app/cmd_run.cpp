@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,13 +14,16 @@
 #include "app/exercise_script.hpp"
 #include "app/gpu_args.hpp"
 #include "app/echo_image_pass.hpp"
+#include "app/live_link.hpp"
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
 #include "device/mouse_keyboard_device.hpp"
 #include "device/null_device.hpp"
 #include "device/scripted_device.hpp"
 #include "device/spacemouse_device.hpp"
+#include "core/parse_number.hpp"
 #include "gpu/window.hpp"
+#include "igtl/server.hpp"
 #include "render/image_panel_pass.hpp"
 #include "render/scene_pass.hpp"
 
@@ -45,10 +49,37 @@ render::PanelRect echo_panel_rect(VkExtent2D window, const echo::ImagePlane& pla
     return {1.0f - width, 0.5f * (1.0f - height), width, height};
 }
 
+// What the live link's clients did since the last call, one line each.
+void report_link(igtl::Server& link, std::vector<igtl::ServerEvent>& events)
+{
+    events.clear();
+    link.events(events);
+    for (const igtl::ServerEvent& e : events) {
+        switch (e.kind) {
+        case igtl::ServerEvent::Kind::connected:
+            std::printf("echosim run: OpenIGTLink: %s connected (%d client%s)\n", e.peer.c_str(), e.clients, e.clients == 1 ? "" : "s");
+            break;
+        case igtl::ServerEvent::Kind::disconnected:
+            std::printf("echosim run: OpenIGTLink: %s gone: %s, after %lld frames (%d client%s)\n", e.peer.c_str(), e.reason.c_str(),
+                        static_cast<long long>(e.frames), e.clients, e.clients == 1 ? "" : "s");
+            break;
+        case igtl::ServerEvent::Kind::error:
+            std::fprintf(stderr, "echosim run: OpenIGTLink: %s\n", e.reason.c_str());
+            break;
+        }
+    }
+}
+
 }  // namespace
 
 int run_window(const RunArgs& args)
 {
+    // --igtl [PORT]: the link to 3D Slicer
+    int igtl_port = 0;
+    if (!args.igtl_port.empty() && (!parse_number(args.igtl_port, igtl_port) || igtl_port < 1 || igtl_port > 65535)) {
+        std::fprintf(stderr, "echosim run: --igtl %s: a port number in 1..65535 (without one: %d)\n", args.igtl_port.c_str(), igtl::kDefaultPort);
+        return kExitBadInput;
+    }
     const gpu::DisplayProbe display = gpu::probe_display();
     if (!display.available) {
         std::fprintf(stderr,
@@ -61,6 +92,21 @@ int run_window(const RunArgs& args)
     if (args.width < 64 || args.height < 64 || args.width > 7680 || args.height > 4320) {
         std::fprintf(stderr, "echosim run: --width/--height %dx%d outside 64x64..7680x4320\n", args.width, args.height);
         return kExitBadInput;
+    }
+
+    // the link listens before the volume is made (a minute and a half the first time), so a port
+    // already taken is said at once; the run then stops, rather than go on without the link asked for
+    std::unique_ptr<igtl::Server> link;
+    if (igtl_port != 0) {
+        try {
+            link = std::make_unique<igtl::Server>(igtl::ServerOptions{.port = igtl_port});
+        } catch (const igtl::ServerError& e) {
+            std::fprintf(stderr, "echosim run: %s (is a PlusServer or another echosim serving it?); choose another with --igtl PORT\n", e.what());
+            return kExitBadInput;
+        }
+        std::printf("echosim run: OpenIGTLink: serving %s, %s and %s on port %d of every interface; in 3D Slicer, connect "
+                    "OpenIGTLinkIF as a client to this machine, port %d\n",
+                    igtl::kImageName, igtl::kProbeToReferenceName, igtl::kImageToReferenceName, link->port(), link->port());
     }
 
     session::SessionOptions session_options{.clock = session::Clock::real_time};
@@ -125,6 +171,15 @@ int run_window(const RunArgs& args)
         render::ImagePanelPass panel(ctx, presenter.format(), {});
         EchoImagePass echo_pass(echo_image, panel, smooth);
         const gpu::FramePasses passes{&scene_pass, &echo_pass, &panel};
+        // with the link: every frame's image read back (a slot behind, no wait) and published with
+        // the pose it was drawn at
+        igtl::LiveFrame live;
+        std::vector<igtl::ServerEvent> link_events;
+        if (link)
+            echo_pass.enable_readback(ctx, [&](const echo::EchoFrame& drawn, std::span<const std::uint32_t> rgba, double wall_clock_s) {
+                fill_live_frame(live, scene.session.image_plane(), drawn, rgba, wall_clock_s);
+                link->publish(live);
+            });
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
                     "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
                     ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
@@ -161,6 +216,7 @@ int run_window(const RunArgs& args)
                     device_status = e.device + " " + device::to_string(e.kind);
                 last_title = -1;
             }
+            if (link) report_link(*link, link_events);
 
             const session::SessionView& state = scene.session.view();  // one physics step for the scene and the image
             scene_pass.set_view(scene.frame_view(state));
@@ -197,6 +253,15 @@ int run_window(const RunArgs& args)
     const double shown_s = std::chrono::duration<double>(last_shown - first_shown).count();
     std::printf("echosim run: presented %d frames, swapchain created %u times (%.1f frames/s)\n", presented, swapchains,
                 presented > 1 && shown_s > 0 ? (presented - 1) / shown_s : 0.0);
+    if (link) {
+        link->stop();
+        std::vector<igtl::ServerEvent> last;
+        report_link(*link, last);
+        const igtl::ServerStats st = link->stats();
+        std::printf("echosim run: OpenIGTLink: sent %lld frames to %lld client%s (%lld frames published)\n",
+                    static_cast<long long>(st.frames_sent), static_cast<long long>(st.clients_served), st.clients_served == 1 ? "" : "s",
+                    static_cast<long long>(st.frames_published));
+    }
     const std::uint32_t n = messages->load();
     if (n > 0) {
         std::fprintf(stderr, "echosim run: Vulkan validation reported %u message(s)\n", n);

@@ -28,10 +28,10 @@ io::Volume image_volume(const echo::EchoImage& image, const echo::ImagePlane& pl
 {
     io::Volume v = io::make_volume({image.columns, image.rows, 1}, io::VoxelType::uint8);
     for (std::size_t i = 0; i < image.rgba.size(); ++i) v.data[i] = std::uint8_t(image.rgba[i] & 0xffu);
-    const glm::dvec3 ax(face.axis_x()), ay(face.axis_y()), az(face.axis_z());
     const double thickness = std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
-    v.directions = glm::dmat3(ax * plane.pixel_x_mm(), ay * plane.pixel_y_mm(), az * thickness);
-    v.origin = glm::dvec3(face.position) + ax * (0.5 * plane.pixel_x_mm() - 0.5 * plane.width_mm) + ay * (0.5 * plane.pixel_y_mm());
+    const glm::dmat4 to_world = echo::pixel_to_world(plane, face);
+    v.directions = glm::dmat3(glm::dvec3(to_world[0]), glm::dvec3(to_world[1]), glm::dvec3(to_world[2]) * thickness);
+    v.origin = glm::dvec3(to_world[3]);
     return v;
 }
 

@@ -47,6 +47,9 @@ struct RunArgs {
     std::string case_name = "healthy";
     std::string device = "mouse";      // mouse, spacemouse or null
     std::filesystem::path trajectory;  // a scripted trajectory CSV instead of a device
+    // --igtl [PORT]: serve the live image and probe over OpenIGTLink on this port, as written
+    // (validated by run_window: 1..65535); empty: no link
+    std::string igtl_port;
 };
 int run_window(const RunArgs& args);
 

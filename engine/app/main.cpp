@@ -1,10 +1,12 @@
 // echosim: one binary, one subcommand per job (DESIGN.md §4).
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "igtl/live_frame.hpp"
 
 namespace {
 
@@ -48,6 +50,13 @@ int main(int argc, char** argv)
     run_cmd->add_option("--device", run.device, "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), null")
         ->check(CLI::IsMember({"mouse", "spacemouse", "null"}));
     run_cmd->add_option("--trajectory", run.trajectory, "play this trajectory CSV (t_s,x_mm,y_mm,z_mm,qw,qx,qy,qz) instead of a device");
+    const std::string igtl_port = std::to_string(echosim::igtl::kDefaultPort);
+    run_cmd->add_option("--igtl", run.igtl_port,
+                        "also serve the live image and the probe over OpenIGTLink on PORT (1..65535; without PORT: " + igtl_port +
+                            ", PlusServer's), for 3D Slicer")
+        ->expected(0, 1)
+        ->default_str(igtl_port)
+        ->type_name("[PORT]");
     add_gpu_options(run_cmd, run.gpu);
 
     MeasureArgs measure;

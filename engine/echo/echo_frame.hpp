@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+
 #include "core/pose.hpp"
 #include "core/probe_spec.hpp"
 #include "echo/phantom.hpp"
@@ -33,6 +35,11 @@ inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(7680) * 4320;
 void check_plane(const ImagePlane& plane);
 // The plane of the given size in mm at about `pixel_mm` pixels.
 ImagePlane plane_with_pixel(double width_mm, double depth_mm, double pixel_mm);
+// Where the image of a probe whose face is at `face` lies: pixel (column, row, 0, 1) to world mm, at
+// pixel centres (column c at x = (c + 0.5) pixel_x_mm - width_mm / 2 along the array, row r at
+// y = (r + 0.5) pixel_y_mm along the beam); the third column is the elevational axis, of unit
+// length (scale it by a slice's thickness).
+glm::dmat4 pixel_to_world(const ImagePlane& plane, const Pose& face);
 
 // The scanner's controls.
 struct ScannerSettings {

@@ -35,6 +35,17 @@ ImagePlane plane_with_pixel(double width_mm, double depth_mm, double pixel_mm)
     return p;
 }
 
+glm::dmat4 pixel_to_world(const ImagePlane& plane, const Pose& face)
+{
+    const glm::dvec3 ax(face.axis_x()), ay(face.axis_y()), az(face.axis_z());
+    glm::dmat4 m(1.0);
+    m[0] = glm::dvec4(ax * plane.pixel_x_mm(), 0.0);
+    m[1] = glm::dvec4(ay * plane.pixel_y_mm(), 0.0);
+    m[2] = glm::dvec4(az, 0.0);
+    m[3] = glm::dvec4(glm::dvec3(face.position) + ax * (0.5 * plane.pixel_x_mm() - 0.5 * plane.width_mm) + ay * (0.5 * plane.pixel_y_mm()), 1.0);
+    return m;
+}
+
 double pulse_at(double time_s, double heart_rate_bpm)
 {
     if (!(heart_rate_bpm > 0)) return 0;

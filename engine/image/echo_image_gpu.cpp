@@ -129,10 +129,39 @@ void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoF
                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     post_.record(cmd, slot_index, bytes_of(k.post), gpu::Groups::cover(extent, VkExtent2D{POST_GROUP_X, POST_GROUP_Y}));
     const bool to_transfer = final_layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, final_layout,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                    to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                    to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    const VkPipelineStageFlags2 reader = to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    const VkAccessFlags2 read = to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    if (!readback_enabled_) {
+        gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, final_layout,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, reader, read);
+        return;
+    }
+    // the live read-back: the image to the slot's host buffer, then on to its reader
+    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                    VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy to_buffer{};
+    to_buffer.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    to_buffer.imageExtent = {plane_.columns, plane_.rows, 1};
+    vkCmdCopyImageToBuffer(cmd, slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, slot.readback.handle(), 1, &to_buffer);
+    gpu::host_read_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    if (!to_transfer)  // the copy only read the image: its reader need wait for the copy, no memory to make visible
+        gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, final_layout,
+                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, reader, read);
+}
+
+void EchoImageGpu::enable_readback(const gpu::Context& ctx)
+{
+    if (readback_enabled_) return;
+    for (Slot& slot : slots_)
+        slot.readback = gpu::Buffer(ctx, plane_.pixels() * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::host_visible);
+    readback_enabled_ = true;
+}
+
+std::span<const std::uint32_t> EchoImageGpu::readback(int slot) const
+{
+    if (!readback_enabled_) return {};
+    return {static_cast<const std::uint32_t*>(slots_[std::size_t(slot)].readback.mapped()), plane_.pixels()};
 }
 
 echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFrame& frame, bool want_labels)

@@ -8,6 +8,13 @@
 //     record() for the frame's slot, then the panel shows image(slot));
 //   - offscreen (render()): one frame, waited for and read back, for `echosim slice`, the tests
 //     and the benchmark.
+// Live read-back (`echosim run --igtl`, the link to 3D Slicer), only when asked for
+// (enable_readback()): record() then also copies the slot's displayed image into a host-visible
+// buffer of the slot, in the same command buffer, after the post stage and before the panel reads
+// it. Nothing waits for it: the host reads it once the slot's fence has signalled, which the
+// presenter waits for anyway before it records the slot again (kFramesInFlight frames later), so
+// the pixels arrive a frame or two behind the display and the display path keeps its pace.
+//
 // Frame slots: every buffer a frame writes (the profile, the scratch, the deform map, the grey and
 // label images, the displayed image) exists once per slot, so the frame being recorded never
 // touches what the GPU may still be reading for the other slot (gpu/frame.hpp).
@@ -19,6 +26,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include "echo/echo_frame.hpp"
 #include "echo/kernel_params.hpp"
@@ -75,6 +83,14 @@ public:
                 Stages stages = Stages::all);
     const gpu::Image& image(int slot) const { return slots_[std::size_t(slot)].image; }
 
+    // From now on, record() also copies each frame's displayed image to the host (above).
+    void enable_readback(const gpu::Context& ctx);
+    bool readback_enabled() const { return readback_enabled_; }
+    // The displayed image (RGBA8 texels, row-major) the slot's last frame wrote: valid once that
+    // frame's fence has signalled (when the slot is next recorded, before record()); empty while
+    // read-back is off.
+    std::span<const std::uint32_t> readback(int slot) const;
+
     // One frame, offscreen: recorded in slot 0, submitted through `pool` (the calling thread's),
     // waited for, and read back with the stages' outputs (the map only when the frame presses; the
     // labels with `want_labels` and a labelled volume). Not while a window's frames use slot 0.
@@ -85,12 +101,14 @@ private:
         gpu::Buffer profile;  // host-visible, written when the slot is recorded
         gpu::Buffer scratch, map, grey, labels;
         gpu::Image image;
+        gpu::Buffer readback;  // host-visible, with enable_readback()
     };
     std::shared_ptr<const EchoVolumeGpu> volume_;
     echo::ImagePlane plane_;
     echo::PatientCase patient_;
     echo::ScannerSettings scanner_;
     std::uint32_t max_steps_ = 0;
+    bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
     std::array<Slot, gpu::kFramesInFlight> slots_;
     // last, so destroyed first: they wait for the device before the resources they bind go
