@@ -315,13 +315,9 @@ std::vector<std::uint8_t> read_metaimage_data(std::istream& in, const MetaImageH
     return data;
 }
 
-// ---- volumes -------------------------------------------------------------------------------------
-
-namespace {
-
-VoxelType voxel_type(const MetaImageHeader& header)
+std::optional<VoxelType> exact_voxel_type(MetElementType type)
 {
-    switch (header.element_type()) {
+    switch (type) {
     case MetElementType::met_uchar: return VoxelType::uint8;
     case MetElementType::met_ushort: return VoxelType::uint16;
     case MetElementType::met_short: return VoxelType::int16;
@@ -329,9 +325,7 @@ VoxelType voxel_type(const MetaImageHeader& header)
     case MetElementType::met_char:
     case MetElementType::met_double: break;
     }
-    header.fail("ElementType", quote_text(header.require("ElementType").value) +
-                                   " volumes are not supported (MET_UCHAR, MET_USHORT, MET_SHORT or MET_FLOAT); convert the "
-                                   "volume, e.g. with 3D Slicer's Cast Scalar Volume");
+    return std::nullopt;
 }
 
 MetElementType element_type_of(VoxelType type)
@@ -343,6 +337,18 @@ MetElementType element_type_of(VoxelType type)
     case VoxelType::float32: return MetElementType::met_float;
     }
     return MetElementType::met_uchar;
+}
+
+// ---- volumes -------------------------------------------------------------------------------------
+
+namespace {
+
+VoxelType voxel_type(const MetaImageHeader& header)
+{
+    if (const auto type = exact_voxel_type(header.element_type())) return *type;
+    header.fail("ElementType", quote_text(header.require("ElementType").value) +
+                                   " volumes are not supported (MET_UCHAR, MET_USHORT, MET_SHORT or MET_FLOAT); convert the "
+                                   "volume, e.g. with 3D Slicer's Cast Scalar Volume");
 }
 
 // The acronym ITK writes in AnatomicalOrientation: per axis, the side it comes from (R for an axis

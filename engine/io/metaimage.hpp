@@ -31,6 +31,7 @@
 #include <map>
 #include <stdexcept>
 #include <span>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,9 @@ inline constexpr std::uint64_t default_metaimage_memory_budget = default_nrrd_me
 enum class MetElementType : std::uint8_t { met_uchar, met_char, met_ushort, met_short, met_float, met_double };
 
 std::size_t element_size(MetElementType type);  // [bytes]
+// The io::Volume voxel type that holds an element type exactly: none for MET_CHAR and MET_DOUBLE.
+std::optional<VoxelType> exact_voxel_type(MetElementType type);
+MetElementType element_type_of(VoxelType type);
 const char* to_string(MetElementType type);    // "MET_UCHAR", ...
 
 // ---- the header and the element data: any MetaImage ----------------------------------------------

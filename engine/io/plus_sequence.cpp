@@ -329,14 +329,7 @@ PlusRecording start_recording(const std::filesystem::path& path, const SequenceH
 // The frames' pixel type, from a MetaImage ElementType.
 VoxelType sweep_pixel_type(const MetaImageHeader& meta)
 {
-    switch (meta.element_type()) {
-    case MetElementType::met_uchar: return VoxelType::uint8;
-    case MetElementType::met_ushort: return VoxelType::uint16;
-    case MetElementType::met_short: return VoxelType::int16;
-    case MetElementType::met_float: return VoxelType::float32;
-    case MetElementType::met_char:
-    case MetElementType::met_double: break;
-    }
+    if (const auto type = exact_voxel_type(meta.element_type())) return *type;
     meta.fail("ElementType", quote_text(meta.require("ElementType").value) +
                                  " frames are not supported: MET_UCHAR, MET_USHORT, MET_SHORT or MET_FLOAT");
 }
@@ -383,17 +376,6 @@ PlusRecording read_seq_nrrd(const std::filesystem::path& path, std::istream& in,
     recording.images.pixels = read_nrrd_data(in, nrrd, budget);
     frames_last(recording.images, geometry);
     return recording;
-}
-
-const char* metaimage_type(VoxelType type)
-{
-    switch (type) {
-    case VoxelType::uint8: return "MET_UCHAR";
-    case VoxelType::uint16: return "MET_USHORT";
-    case VoxelType::int16: return "MET_SHORT";
-    case VoxelType::float32: return "MET_FLOAT";
-    }
-    return "MET_UCHAR";
 }
 
 void check_sweep(const std::filesystem::path& path, const Sweep& sweep)
@@ -451,7 +433,7 @@ void write_plus_mha(const std::filesystem::path& path, const Sweep& sweep, bool 
         h += "\n" + label + "_ImageToReferenceTransformStatus = " + (f.valid ? "OK" : "INVALID") + "\n";
         h += label + "_Timestamp = " + format_double(f.timestamp) + "\n";
     }
-    h += std::string("ElementType = ") + metaimage_type(sweep.pixel_type) + "\nElementDataFile = LOCAL\n";
+    h += std::string("ElementType = ") + to_string(element_type_of(sweep.pixel_type)) + "\nElementDataFile = LOCAL\n";
 
     PartialFile<PlusSequenceError> out(path);
     out.write(h.data(), h.size());
