@@ -1,5 +1,7 @@
 #include "device/trajectory.hpp"
 
+#include "core/pose.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -56,6 +58,9 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& source)
                 throw std::invalid_argument(where + ": more than 8 fields");
             if (!parse_number(token, v[field]) || !std::isfinite(v[field]))
                 throw std::invalid_argument(where + ": " + kFields[field] + " '" + std::string(token) + "' is not a finite number");
+            if (field >= 1 && field <= 3 && std::abs(v[field]) > kMaxPoseCoordinateMm)
+                throw std::invalid_argument(where + ": " + kFields[field] + " '" + std::string(token) +
+                                            "' is more than a kilometre from the origin (at most 1e6 mm)");
             begin = comma + 1;
         }
         TrajectoryRow r;

@@ -1,4 +1,5 @@
 // echosim: one binary, one subcommand per job (DESIGN.md §4).
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -16,6 +17,22 @@ void add_gpu_options(CLI::App* cmd, echosim::app::GpuArgs& gpu)
     cmd->add_flag("--validation", gpu.validation, "enable the Khronos validation layer; any message makes the command fail");
 }
 
+// CLI::Range lets NaN through (every comparison with it is false) and, given "inf", compares an
+// infinity: a range that refuses both by name, for every number the command line takes.
+CLI::Validator finite_range(double lo, double hi)
+{
+    const std::string range = "[" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]";
+    return CLI::Validator(
+        [lo, hi, range](std::string& text) -> std::string {
+            double v = 0;
+            if (!CLI::detail::lexical_cast(text, v)) return "'" + text + "' is not a number";
+            if (!std::isfinite(v)) return "'" + text + "' is not a finite number";
+            if (v < lo || v > hi) return "Value " + text + " not in range " + range;
+            return {};
+        },
+        "NUMBER in " + range);
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -27,11 +44,11 @@ int main(int argc, char** argv)
     RenderArgs render;
     auto* render_cmd = app.add_subcommand("render", "render one frame headless to a PNG");
     render_cmd->add_option("--out", render.out, "PNG file to write")->required();
-    render_cmd->add_option("--width", render.width, "image width [px]")->check(CLI::Range(16u, 16384u));
-    render_cmd->add_option("--height", render.height, "image height [px]")->check(CLI::Range(16u, 16384u));
+    render_cmd->add_option("--width", render.width, "image width [px]")->check(finite_range(16u, 16384u));
+    render_cmd->add_option("--height", render.height, "image height [px]")->check(finite_range(16u, 16384u));
     render_cmd->add_option("--pose", render.pose, "probe pose x,y,z,qw,qx,qy,qz in world (LPS mm)");
     render_cmd->add_option("--press-mm", render.press_mm, "press the probe this far into the skin and let the tissue settle [mm]")
-        ->check(CLI::Range(0.0, 30.0));
+        ->check(finite_range(0.0, 30.0));
     render_cmd->add_option("--camera", render.camera,
                            "orbit camera yaw,pitch [rad],distance [mm] and optionally its target x,y,z [mm]; "
                            "target 'probe' looks at the probe");
@@ -78,8 +95,8 @@ int main(int argc, char** argv)
     phantom_cmd->add_option("--case", phantom.case_name, "healthy, dvt-acute or dvt-chronic");
     phantom_cmd->add_option("--out", phantom.out, "sweep to write (.mha); its frames' labels go beside it (.labels.mha)")->required();
     phantom_cmd->add_option("--labels", phantom.labels, "also write the phantom's label map (NRRD, 0.3 mm)");
-    phantom_cmd->add_option("--frames", phantom.frames, "frames in the sweep")->check(CLI::Range(2, 5000));
-    phantom_cmd->add_option("--pixel-mm", phantom.pixel_mm, "image pixel size [mm]")->check(CLI::Range(0.02, 1.0));
+    phantom_cmd->add_option("--frames", phantom.frames, "frames in the sweep")->check(finite_range(2, 5000));
+    phantom_cmd->add_option("--pixel-mm", phantom.pixel_mm, "image pixel size [mm]")->check(finite_range(0.02, 1.0));
     phantom_cmd->add_option("--seed", phantom.seed, "random seed of the hand tremor");
     phantom_cmd->add_flag("--compressed", phantom.compressed, "zlib-compress the pixels");
 
@@ -91,7 +108,7 @@ int main(int argc, char** argv)
                                 "PLUS device-set configuration (.xml): its CoordinateDefinitions and VolumeReconstruction element");
     reconstruct_cmd->add_option("--image-to-reference", reconstruct.image_to_reference,
                                 "the frame to reconstruct in (e.g. Reference, Tracker), or a transform name such as ImageToTracker");
-    reconstruct_cmd->add_option("--voxel-mm", reconstruct.voxel_mm, "voxel size [mm] (overrides OutputSpacing)")->check(CLI::Range(0.02, 10.0));
+    reconstruct_cmd->add_option("--voxel-mm", reconstruct.voxel_mm, "voxel size [mm] (overrides OutputSpacing)")->check(finite_range(0.02, 10.0));
     reconstruct_cmd->add_option("--splat", reconstruct.splat, "nearest or trilinear (PLUS: NEAREST_NEIGHBOR or LINEAR)")
         ->check(CLI::IsMember({"nearest", "trilinear"}));
     reconstruct_cmd->add_option("--compound", reconstruct.compound, "mean, max or latest (PLUS: MEAN, MAXIMUM, LATEST)")
@@ -120,19 +137,19 @@ int main(int argc, char** argv)
     slice_cmd->add_option("--out", slice.out, "image to write: .png, or .nrrd placed in the volume's space")->required();
     slice_cmd->add_option("--pose", slice.pose, "probe resting on the skin: x,y,z,qw,qx,qy,qz in world (LPS mm); default: the patch centre");
     slice_cmd->add_option("--press-mm", slice.press_mm, "press the probe this far in and let the tissue settle [mm]")
-        ->check(CLI::Range(0.0, 25.0));
+        ->check(finite_range(0.0, 25.0));
     slice_cmd->add_option("--force", slice.force_n, "press the probe until the tissue pushes back this hard [N]")
-        ->check(CLI::Range(0.01, 1000.0));
+        ->check(finite_range(0.01, 1000.0));
     slice_cmd->add_flag("--cpu", slice.cpu, "run the CPU twin of the kernels instead of the GPU");
     slice_cmd->add_option("--case", slice.case_name, "healthy, dvt-acute or dvt-chronic (the vessels' behaviour, and the default volume)");
-    slice_cmd->add_option("--width-mm", slice.width_mm, "image width [mm]")->check(CLI::Range(1.0, 200.0));
-    slice_cmd->add_option("--depth-mm", slice.depth_mm, "image depth [mm]")->check(CLI::Range(1.0, 300.0));
-    slice_cmd->add_option("--pixel-mm", slice.pixel_mm, "pixel size [mm]")->check(CLI::Range(0.005, 5.0));
-    slice_cmd->add_option("--gain-db", slice.gain_db, "overall gain [dB]")->check(CLI::Range(-60.0, 60.0));
-    slice_cmd->add_option("--dynamic-range-db", slice.dynamic_range_db, "display dynamic range [dB]")->check(CLI::Range(10.0, 120.0));
-    slice_cmd->add_option("--venous-mmhg", slice.venous_mmhg, "venous pressure [mmHg]")->check(CLI::Range(0.0, 100.0));
-    slice_cmd->add_option("--heart-rate", slice.heart_rate_bpm, "heart rate [beats/min] (0: no pulse)")->check(CLI::Range(0.0, 250.0));
-    slice_cmd->add_option("--time", slice.time_s, "moment of the heart cycle [s from a diastole]")->check(CLI::Range(0.0, 1e6));
+    slice_cmd->add_option("--width-mm", slice.width_mm, "image width [mm]")->check(finite_range(1.0, 200.0));
+    slice_cmd->add_option("--depth-mm", slice.depth_mm, "image depth [mm]")->check(finite_range(1.0, 300.0));
+    slice_cmd->add_option("--pixel-mm", slice.pixel_mm, "pixel size [mm]")->check(finite_range(0.005, 5.0));
+    slice_cmd->add_option("--gain-db", slice.gain_db, "overall gain [dB]")->check(finite_range(-60.0, 60.0));
+    slice_cmd->add_option("--dynamic-range-db", slice.dynamic_range_db, "display dynamic range [dB]")->check(finite_range(10.0, 120.0));
+    slice_cmd->add_option("--venous-mmhg", slice.venous_mmhg, "venous pressure [mmHg]")->check(finite_range(0.0, 100.0));
+    slice_cmd->add_option("--heart-rate", slice.heart_rate_bpm, "heart rate [beats/min] (0: no pulse)")->check(finite_range(0.0, 250.0));
+    slice_cmd->add_option("--time", slice.time_s, "moment of the heart cycle [s from a diastole]")->check(finite_range(0.0, 1e6));
     add_gpu_options(slice_cmd, slice.gpu);
 
     HapticsDemoArgs demo;
@@ -140,13 +157,19 @@ int main(int argc, char** argv)
                                         "the paper's Fig. 8: the force while the probe slides across the skin, with and without the local contact model");
     demo_cmd->add_option("--out", demo.out, "folder for force_log.csv, force.png and summary.json")->required();
     demo_cmd->add_option("--physics-hz", demo.physics_hz, "the physics' rate (the paper's: 100 Hz); the haptic loop runs at 1 kHz")
-        ->check(CLI::Range(10.0, 1000.0));
+        ->check(finite_range(10.0, 1000.0));
     demo_cmd->add_flag("--json", demo.json, "print the summary as JSON on stdout");
     DevicesArgs devices;
     auto* devices_cmd = app.add_subcommand("devices", "list the input and haptic devices echosim can drive, and whether each is ready");
     devices_cmd->add_flag("--json", devices.json, "print them as a JSON array");
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help is no error; every other parse error (a value out of range, an unknown option, a
+        // missing one) is bad input, exit 2 as documented, not CLI11's own codes (105, 106, ...)
+        return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+    }
 
     const char* which = app.get_subcommands().front()->get_name().c_str();
     try {

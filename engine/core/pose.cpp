@@ -35,6 +35,9 @@ Pose parse_pose(std::string_view text)
         if (!parse_number(trimmed, v[i]) || !std::isfinite(v[i]))
             throw std::invalid_argument("pose field " + std::string(names[i]) + " is not a finite number: '" +
                                         std::string(field) + "'");
+        if (i < 3 && std::abs(v[i]) > kMaxPoseCoordinateMm)
+            throw std::invalid_argument("pose field " + std::string(names[i]) + " '" + std::string(field) +
+                                        "' is more than a kilometre from the origin (|" + std::string(names[i]) + "| <= 1e6 mm)");
         if (i + 1 < names.size() && comma == std::string_view::npos)
             throw std::invalid_argument("pose field " + std::string(names[i + 1]) +
                                         " is missing (expected x,y,z,qw,qx,qy,qz)");

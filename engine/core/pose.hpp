@@ -21,9 +21,13 @@ struct Pose {
     glm::vec3 axis_z() const { return orientation * glm::vec3(0, 0, 1); }  // elevational
 };
 
+// A probe's position lies within a kilometre of the origin [mm]: a coordinate beyond is a typo or
+// junk, and beyond float's range (1e39) it would silently become an infinity.
+inline constexpr double kMaxPoseCoordinateMm = 1e6;
+
 // Parses `x,y,z,qw,qx,qy,qz`. Throws std::invalid_argument naming the field when one is missing,
-// not a finite number, or when the quaternion is not of unit length (within 1 %); the quaternion
-// is then renormalised.
+// not a finite number, a position beyond kMaxPoseCoordinateMm, or when the quaternion is not of
+// unit length (within 1 %); the quaternion is then renormalised.
 Pose parse_pose(std::string_view text);
 std::string format_pose(const Pose& pose);
 

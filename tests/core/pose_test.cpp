@@ -47,6 +47,10 @@ TEST(Pose, RejectsBadFieldsByName)
     EXPECT_NE(message("1,2,3,0.5,0,0,0").find("unit length"), std::string::npos);
     EXPECT_NE(message("1,2,3,1,0,0,0,9").find("more than 7"), std::string::npos);
     EXPECT_NE(message("").find("field x"), std::string::npos);
+    // 1e39 is finite as a double but an infinity as a float: refused, not silently infinite
+    EXPECT_NE(message("1e39,2,3,1,0,0,0").find("field x '1e39' is more than a kilometre"), std::string::npos);
+    EXPECT_NE(message("1,2,-1e7,1,0,0,0").find("field z"), std::string::npos);
+    EXPECT_EQ(message("1,2,-1e6,1,0,0,0"), "no error");
 }
 
 TEST(Pose, FromAxesIsOrthonormalAndKeepsTheBeam)

@@ -62,6 +62,7 @@ TEST(Trajectory, RefusesBadFilesNamingLineAndField)
     EXPECT_NE(expect_refused(h + "0,1,2,3,1,0,0\n").find("t.csv:2: qz is missing"), std::string::npos);
     EXPECT_NE(expect_refused(h + "0,1,nan,3,1,0,0,0\n").find("t.csv:2: y_mm 'nan' is not a finite number"), std::string::npos);
     EXPECT_NE(expect_refused(h + "0,1,1e999,3,1,0,0,0\n").find("y_mm"), std::string::npos);
+    EXPECT_NE(expect_refused(h + "0,1,2,1e39,1,0,0,0\n").find("t.csv:2: z_mm '1e39' is more than a kilometre"), std::string::npos);
     EXPECT_NE(expect_refused(h + "0,1,2,3,2,0,0,0\n").find("t.csv:2: qw,qx,qy,qz is not a unit quaternion"), std::string::npos);
     EXPECT_NE(expect_refused(h + "1,0,0,0,1,0,0,0\n1,0,0,0,1,0,0,0\n").find("t.csv:3: t_s 1.000000 does not increase"), std::string::npos);
     EXPECT_NE(expect_refused(h + "0,1,2,3,1,0,0,0,9\n").find("more than 8 fields"), std::string::npos);

@@ -1,0 +1,14 @@
+# Every command-line error exits 2 (bad input), as documented, whatever CLI11 calls it: a value out
+# of range, NaN or an infinity (which CLI11's own ranges let through), a value that is not a number, an unknown option, a missing required one; --help exits 0.
+foreach(args "render;--width;99999;--out;x.png" "slice;--press-mm;deep;--out;x.png" "reconstruct;--sweep;a.mha"
+        "render;--out;x.png;--no-such-option" "reconstruct;--sweep;a.mha;--out;v.nrrd;--compound;median"
+        "render;--out;x.png;--press-mm;nan" "slice;--out;x.png;--force;inf" "reconstruct;--sweep;a.mha;--out;v.nrrd;--voxel-mm;nan")
+  execute_process(COMMAND ${ECHOSIM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "echosim ${args}: expected exit code 2, got ${rc}:\n${out}${err}")
+  endif()
+endforeach()
+execute_process(COMMAND ${ECHOSIM} render --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "--width")
+  message(FATAL_ERROR "echosim render --help: exit ${rc}:\n${out}${err}")
+endif()
