@@ -19,7 +19,7 @@ int run_fit(const FitArgs& args)
         std::fprintf(stderr, "echosim fit: %s\n", e.what());
         return kExitBadInput;
     }
-    if (!output_folder_exists("fit", "--out", args.out)) return kExitBadInput;
+    if (!output_path_usable("fit", "--out", args.out)) return kExitBadInput;
 
     fit::FitOptions options;
     options.method = args.method == "steepest" ? fit::Method::steepest_descent : fit::Method::levenberg_marquardt;

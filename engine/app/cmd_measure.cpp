@@ -8,7 +8,7 @@ namespace echosim::app {
 
 int run_measure(const MeasureArgs& args)
 {
-    if (!output_folder_exists("measure", "--out", args.out)) return kExitBadInput;
+    if (!output_path_usable("measure", "--out", args.out)) return kExitBadInput;
     const scene::LegModel leg;
     fit::CampaignOptions options;
     options.seed = args.seed;

@@ -28,8 +28,8 @@ int run_phantom(const PhantomArgs& args)
         std::fprintf(stderr, "echosim phantom: --case: %s\n", e.what());
         return kExitBadInput;
     }
-    if (!output_folder_exists("phantom", "--out", args.out) ||
-        (!args.labels.empty() && !output_folder_exists("phantom", "--labels", args.labels)))
+    if (!output_path_usable("phantom", "--out", args.out) ||
+        (!args.labels.empty() && !output_path_usable("phantom", "--labels", args.labels)))
         return kExitBadInput;
     const scene::LegModel leg;
     const echo::Phantom phantom(leg, which);

@@ -14,6 +14,7 @@
 #include "io/nrrd.hpp"
 #include "io/plus_config.hpp"
 #include "io/plus_sequence.hpp"
+#include "io/text_fields.hpp"
 #include "io/transform_repository.hpp"
 #include "io/volume_file.hpp"
 
@@ -119,7 +120,11 @@ std::filesystem::path labels_path(const std::filesystem::path& out)
 int run_reconstruct(const ReconstructArgs& args)
 {
     using clock = std::chrono::steady_clock;
-    if (!output_folder_exists("reconstruct", "--out", args.out)) return kExitBadInput;
+    if (!output_path_usable("reconstruct", "--out", args.out)) return kExitBadInput;
+    if (const std::string ext = io::text::lower(args.out.extension().string()); ext != ".nrrd" && ext != ".mha" && ext != ".mhd") {
+        std::fprintf(stderr, "echosim reconstruct: --out %s: write a volume as .nrrd, .mha or .mhd\n", args.out.c_str());
+        return kExitBadInput;
+    }
     Plan plan;
     io::Sweep sweep, labels;
     try {

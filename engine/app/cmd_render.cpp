@@ -47,7 +47,7 @@ void apply_camera(const std::string& text, DefaultScene& scene)
 int run_render(const RenderArgs& args)
 {
     // check what the user gave before spending time on Vulkan
-    if (!output_folder_exists("render", "--out", args.out)) return kExitBadInput;
+    if (!output_path_usable("render", "--out", args.out)) return kExitBadInput;
     DefaultScene scene;  // the session on the lock-step clock: only what is asked of it is simulated
     if (!args.pose.empty()) {
         try {

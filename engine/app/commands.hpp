@@ -15,9 +15,11 @@ inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitValidation = 3;
 
-// Whether the folder `path` is to be written into exists; if not, says so on stderr, naming the
-// command and the option, so a command can refuse before it spends time on work it cannot save.
-bool output_folder_exists(const char* command, const char* option, const std::filesystem::path& path);
+// Whether `path` can take the command's output: its folder exists, and the path is not something
+// other than a regular file (a device node, a FIFO, a folder), which writing would replace. If not,
+// says so on stderr, naming the command and the option, so a command can refuse (exit 2) before it
+// spends time on work it cannot save.
+bool output_path_usable(const char* command, const char* option, const std::filesystem::path& path);
 
 struct GpuArgs {
     std::string gpu;          // --gpu NAME, else ECHOSIM_GPU

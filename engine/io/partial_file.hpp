@@ -1,7 +1,9 @@
 // Writing a file so that a failure never leaves a broken file looking valid: everything goes to
 // FILE.partial, which is renamed over FILE only once complete and closed; on any failure (or if
 // commit() is never reached) the partial file is removed. Errors are thrown as `Error` (each file
-// format has its own exception type) with the final path in the message.
+// format has its own exception type) with the final path in the message. A path that names
+// something other than a regular file (a device node, a FIFO, a folder) is refused before anything
+// is written: renaming over it would replace the node with a file.
 #pragma once
 
 #include <cerrno>
@@ -20,6 +22,10 @@ class PartialFile {
 public:
     explicit PartialFile(const std::filesystem::path& path) : path_(path), tmp_(path)
     {
+        std::error_code ec;
+        const auto status = std::filesystem::status(path, ec);
+        if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+            fail("not a regular file (a device, a FIFO or a folder): refusing to replace it");
         tmp_ += ".partial";
         file_ = std::fopen(tmp_.c_str(), "wb");
         if (!file_) fail("cannot open " + tmp_.string() + " for writing: " + std::generic_category().message(errno));

@@ -12,3 +12,15 @@ execute_process(COMMAND ${ECHOSIM} render --help RESULT_VARIABLE rc OUTPUT_VARIA
 if(NOT rc EQUAL 0 OR NOT out MATCHES "--width")
   message(FATAL_ERROR "echosim render --help: exit ${rc}:\n${out}${err}")
 endif()
+
+# an output that is not a regular file is refused before any work, and stays what it was
+file(MAKE_DIRECTORY ${WORK})
+foreach(args "render;--gpu;cpu;--out;${WORK}" "reconstruct;--sweep;a.mha;--out;${WORK}/v.txt")
+  execute_process(COMMAND ${ECHOSIM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "echosim ${args}: expected exit code 2, got ${rc}:\n${out}${err}")
+  endif()
+endforeach()
+if(NOT IS_DIRECTORY ${WORK})
+  message(FATAL_ERROR "the folder named as --out was replaced")
+endif()
