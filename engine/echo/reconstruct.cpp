@@ -87,6 +87,14 @@ VoxelGrid plus_grid(std::span<const glm::dmat4> frames, std::uint32_t width, std
     return g;
 }
 
+std::uint64_t VoxelGrid::voxel_count() const
+{
+    std::uint64_t n = 1;
+    for (const std::size_t s : size)
+        if (__builtin_mul_overflow(n, std::uint64_t(s), &n)) return std::numeric_limits<std::uint64_t>::max();
+    return n;
+}
+
 std::uint64_t reconstruction_bytes(const VoxelGrid& grid)
 {
     const std::uint64_t n = grid.voxel_count();

@@ -57,7 +57,8 @@ struct VoxelGrid {
     glm::dvec3 spacing{0.3};   // [mm]
     std::array<std::size_t, 3> size{};
 
-    std::uint64_t voxel_count() const { return std::uint64_t(size[0]) * size[1] * size[2]; }
+    // The voxels' count; UINT64_MAX when it overflows (a grid no budget takes).
+    std::uint64_t voxel_count() const;
 };
 
 // The grid over the box [lo, hi] (in the map's axes) at `voxel_mm`, voxel centres on its corners.

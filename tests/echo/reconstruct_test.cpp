@@ -94,6 +94,16 @@ TEST(Reconstructor, RefusesAVolumeOverTheMemoryBudget)
         EXPECT_NE(std::string(e.what()).find("over the memory budget of 64 MiB"), std::string::npos) << e.what();
     }
     EXPECT_GT(reconstruction_bytes({100, 100, 100}, 0.1), 1ull << 30);
+
+    // a grid whose voxel count wraps 64 bits (a file's numbers can ask for it) is refused, not
+    // allocated at its wrapped size
+    VoxelGrid wraps;
+    wraps.size = {std::size_t(1) << 22, std::size_t(1) << 22, std::size_t(1) << 22};  // 2^66 voxels
+    EXPECT_EQ(wraps.voxel_count(), UINT64_MAX);
+    EXPECT_THROW(Reconstructor(wraps, ReconstructOptions{}), std::runtime_error);
+    // and so is a box too large to grid at all, or a NaN in it
+    EXPECT_THROW(box_grid({0, 0, 0}, {1e300, 1, 1}, 0.1), std::invalid_argument);
+    EXPECT_THROW(box_grid({0, 0, 0}, {std::nan(""), 1, 1}, 0.1), std::invalid_argument);
 }
 
 // The whole chain on the phantom: a sweep, its reconstruction, and slices of it at poses the sweep
