@@ -3,9 +3,11 @@
 // best the processor has (GCC's target_clones). Elsewhere the mark does nothing. The clones may round
 // differently (fused multiply-adds, the lanes of a vectorised sum), so such a kernel's last bits can
 // differ from one processor to another; on one machine they repeat exactly.
+// Not under ThreadSanitizer: the loader runs the clones' resolvers before TSan's runtime is up, and
+// an instrumented resolver crashes the program before main.
 #pragma once
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_THREAD__)
 #define ECHOSIM_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define ECHOSIM_SIMD_CLONES
