@@ -13,6 +13,7 @@
 #include <chrono>
 #include <filesystem>
 #include <random>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
@@ -119,10 +120,10 @@ void reconstruct_plus(benchmark::State& state, PlusRecordingFixture& f, echo::Sp
     std::size_t frames = 0;
     for (auto _ : state) {
         const auto t0 = clock::now();
-        const io::PlusRecording recording = io::read_plus_recording(f.path);
+        io::PlusRecording recording = io::read_plus_recording(f.path);
         // the file's ImageToReference is the configuration's chain already: resolve through it as
         // reconstruct --config does, so the cost of the repository is in the figure
-        const io::Sweep sweep = io::resolve_sweep(f.path, recording, {}, "Image", "Reference");
+        const io::Sweep sweep = io::resolve_sweep(f.path, std::move(recording), {}, "Image", "Reference");
         std::vector<glm::dmat4> transforms;
         for (const auto& fr : sweep.frames) transforms.push_back(fr.image_to_reference);
         echo::ReconstructOptions o;

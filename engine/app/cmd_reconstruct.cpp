@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -129,13 +130,10 @@ int run_reconstruct(const ReconstructArgs& args)
     io::Sweep sweep, labels;
     try {
         plan = make_plan(args);
-        const io::PlusRecording recording = io::read_plus_recording(args.sweep);
-        if (plan.reference_frame.empty() && args.config.empty()) {
-            sweep = io::read_plus_sequence(args.sweep);  // Reference, else Tracker, as the recording names them
-        } else {
-            if (plan.reference_frame.empty()) plan.reference_frame = "Reference";
-            sweep = io::resolve_sweep(args.sweep, recording, plan.calibration, plan.image_frame, plan.reference_frame);
-        }
+        io::PlusRecording recording = io::read_plus_recording(args.sweep);
+        if (plan.reference_frame.empty())
+            plan.reference_frame = args.config.empty() ? io::default_reference_frame(recording) : "Reference";
+        sweep = io::resolve_sweep(args.sweep, std::move(recording), plan.calibration, plan.image_frame, plan.reference_frame);
         if (std::filesystem::exists(label_sweep_path(args.sweep))) labels = io::read_plus_sequence(label_sweep_path(args.sweep));
     } catch (const std::runtime_error& e) {  // the file readers' errors, each naming its file and field
         std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
@@ -187,7 +185,7 @@ int run_reconstruct(const ReconstructArgs& args)
                 name_of(options.splat), name_of(options.compounding), plan.fill_holes ? "filled" : "left empty",
                 plan.extent ? "the configuration's" : plan.plus_grid ? "PLUS's" : "a sweep-aligned", grid.size[0], grid.size[1],
                 grid.size[2], grid.spacing.x, grid.spacing.y, grid.spacing.z,
-                plan.reference_frame.empty() ? "the reference frame" : plan.reference_frame.c_str());
+                plan.reference_frame.c_str());
 
     const auto t0 = clock::now();
     std::size_t inserted = 0;

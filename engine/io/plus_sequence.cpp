@@ -487,10 +487,10 @@ TransformRepository frame_repository(const PlusRecording& recording, std::size_t
 
 }  // namespace
 
-Sweep resolve_sweep(const std::filesystem::path& path, const PlusRecording& recording, const TransformRepository& config,
+Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, const TransformRepository& config,
                     const std::string& image_frame, const std::string& reference_frame)
 {
-    Sweep sweep = recording.images;
+    Sweep sweep = std::move(recording.images);
     for (std::size_t f = 0; f < recording.frames.size(); ++f) {
         const RecordedFrame& frame = recording.frames[f];
         try {
@@ -504,17 +504,20 @@ Sweep resolve_sweep(const std::filesystem::path& path, const PlusRecording& reco
     return sweep;
 }
 
+std::string default_reference_frame(const PlusRecording& recording)
+{
+    if (recording.frames.empty()) return "Reference";
+    const TransformRepository first = frame_repository(recording, 0, {});
+    if (!first.find("Image", "Reference") && (first.find("Image", "Tracker") || (!first.knows("Reference") && first.knows("Tracker"))))
+        return "Tracker";
+    return "Reference";
+}
+
 Sweep read_plus_sequence(const std::filesystem::path& path, std::uint64_t memory_budget_bytes)
 {
-    const PlusRecording recording = read_plus_recording(path, memory_budget_bytes);
-    // Reference, as PLUS's tools default to, unless the recording names only the tracker's frame
-    std::string reference = "Reference";
-    if (!recording.frames.empty()) {
-        const TransformRepository first = frame_repository(recording, 0, {});
-        if (!first.find("Image", reference) && (first.find("Image", "Tracker") || (!first.knows(reference) && first.knows("Tracker"))))
-            reference = "Tracker";
-    }
-    return resolve_sweep(path, recording, {}, "Image", reference);
+    PlusRecording recording = read_plus_recording(path, memory_budget_bytes);
+    const std::string reference = default_reference_frame(recording);
+    return resolve_sweep(path, std::move(recording), {}, "Image", reference);
 }
 
 }  // namespace echosim::io

@@ -84,10 +84,15 @@ PlusRecording read_plus_recording(const std::filesystem::path& path,
                                   std::uint64_t memory_budget_bytes = default_sweep_memory_budget);
 
 // Each frame's ImageToReference, from its transforms, the file-wide ones and `config` (which the
-// recording's own take precedence over). Throws PlusSequenceError naming the file, the frame and
-// the missing transform when a frame has no chain from `image_frame` to `reference_frame`.
-Sweep resolve_sweep(const std::filesystem::path& path, const PlusRecording& recording, const TransformRepository& config,
+// recording's own take precedence over); the recording's pixels move into the sweep. Throws
+// PlusSequenceError naming the file, the frame and the missing transform when a frame has no chain
+// from `image_frame` to `reference_frame`.
+Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, const TransformRepository& config,
                     const std::string& image_frame = "Image", const std::string& reference_frame = "Reference");
+
+// The frame a recording is reconstructed in when nothing says: Reference, as PLUS's tools default
+// to, unless the recording's first frame names only the tracker's frame (then Tracker).
+std::string default_reference_frame(const PlusRecording& recording);
 
 // Throws PlusSequenceError naming the file when the sweep is inconsistent (pixel count, no frames,
 // non-finite or non-affine transform, unknown orientation) or cannot be written; writes FILE.partial
