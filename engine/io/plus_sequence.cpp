@@ -2,14 +2,11 @@
 
 #include "core/parse_number.hpp"
 #include "io/metaimage.hpp"
-#include "io/metaimage.hpp"
 #include "io/nrrd.hpp"
 #include "io/partial_file.hpp"
 #include "io/text_fields.hpp"
-#include "io/zlib_stream.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -27,7 +24,6 @@ namespace {
 using text::format_double;
 using text::quote_text;
 using text::split_whitespace;
-using text::trim;
 using text::upper;
 
 constexpr std::string_view frame_prefix = "Seq_Frame";
