@@ -13,6 +13,7 @@
 
 #include "core/parse_number.hpp"
 #include "io/text_fields.hpp"
+#include "io/transform_repository.hpp"
 
 namespace echosim::io {
 namespace {
@@ -78,7 +79,7 @@ PlusConfigTransform read_transform(const Place& place)
     if (t.from == t.to) place.fail("To", "the same frame as From (" + t.from + ")");
     const auto m = numbers<double>(place, "Matrix", matrix, 16);
     for (int i = 0; i < 16; ++i) t.matrix[i % 4][i / 4] = m[std::size_t(i)];  // the file row by row, glm column-major
-    if (t.matrix[0][3] != 0 || t.matrix[1][3] != 0 || t.matrix[2][3] != 0 || t.matrix[3][3] != 1)
+    if (!is_affine(t.matrix))
         place.fail("Matrix", "the last row is not 0 0 0 1: not an affine transform");
     return t;
 }

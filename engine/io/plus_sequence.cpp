@@ -94,14 +94,9 @@ glm::dmat4 parse_matrix(const std::filesystem::path& path, std::string_view fiel
             fail_field(path, field, "entry " + std::to_string(i) + " " + quote_text(tokens[i]) + " is not finite");
         m[int(i % 4)][int(i / 4)] = x;  // glm is column-major, the file row-major
     }
-    const bool affine = m[0][3] == 0 && m[1][3] == 0 && m[2][3] == 0 && m[3][3] == 1;
-    if (!usable) {  // kept as written when it is a transform at all, for what writes it back
-        bool finite = affine;
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(m[c][r]);
-        return finite ? m : glm::dmat4(1.0);
-    }
-    if (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1)
+    // an unusable one is kept as written when it is a transform at all, for what writes it back
+    if (!usable) return is_affine(m) && all_finite(m) ? m : glm::dmat4(1.0);
+    if (!is_affine(m))
         fail_field(path, field, "the last row is not 0 0 0 1: not an affine transform");
     return m;
 }
@@ -387,10 +382,8 @@ void check_sweep(const std::filesystem::path& path, const Sweep& sweep)
         const TrackedFrame& f = sweep.frames[i];
         if (!std::isfinite(f.timestamp)) fail_field(path, frame_label(i) + "_Timestamp", "not finite");
         const glm::dmat4& m = f.image_to_reference;
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r)
-                if (!std::isfinite(m[c][r])) fail_field(path, frame_label(i) + "_ImageToReferenceTransform", "not finite");
-        if (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1)
+        if (!all_finite(m)) fail_field(path, frame_label(i) + "_ImageToReferenceTransform", "not finite");
+        if (!is_affine(m))
             fail_field(path, frame_label(i) + "_ImageToReferenceTransform",
                        "the last row is not 0 0 0 1: not an affine transform");
     }

@@ -33,14 +33,22 @@ std::optional<std::pair<std::string, std::string>> split_transform_name(std::str
     return std::pair{std::string(name.substr(0, *at)), std::string(name.substr(*at + 2))};
 }
 
+bool all_finite(const glm::dmat4& m)
+{
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+bool is_affine(const glm::dmat4& m) { return m[0][3] == 0 && m[1][3] == 0 && m[2][3] == 0 && m[3][3] == 1; }
+
 void TransformRepository::set(const std::string& from, const std::string& to, const glm::dmat4& matrix, bool valid)
 {
     if (from.empty() || to.empty()) throw TransformError("a transform needs both a 'from' and a 'to' frame name");
     if (from == to) throw TransformError(from + "To" + to + ": a transform from a frame to itself");
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(matrix[c][r])) throw TransformError(from + "To" + to + ": the matrix is not finite");
-    if (matrix[0][3] != 0 || matrix[1][3] != 0 || matrix[2][3] != 0 || matrix[3][3] != 1)
+    if (!all_finite(matrix)) throw TransformError(from + "To" + to + ": the matrix is not finite");
+    if (!is_affine(matrix))
         throw TransformError(from + "To" + to + ": the last row is not 0 0 0 1: not an affine transform");
     for (Link& l : links_)
         if ((l.from == from && l.to == to) || (l.from == to && l.to == from)) {

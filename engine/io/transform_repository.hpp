@@ -28,6 +28,11 @@ public:
 // PLUS names transforms. nullopt when there is none or more than one ("StylusToToolToTracker").
 std::optional<std::pair<std::string, std::string>> split_transform_name(std::string_view name);
 
+// Every entry finite; the last row 0 0 0 1 (points map to points, no projection). What every
+// reader of transforms (sequences, configurations, the repository) checks.
+bool all_finite(const glm::dmat4& m);
+bool is_affine(const glm::dmat4& m);
+
 struct FrameTransform {
     glm::dmat4 matrix{1.0};  // maps `from` coordinates to `to` coordinates
     bool valid = true;       // false: the tracker said INVALID, MISSING, ... for it
