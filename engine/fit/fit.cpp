@@ -1,6 +1,9 @@
 #include "fit/fit.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -11,6 +14,7 @@
 #include <glog/logging.h>
 
 #include "tissue/nonlinear_spring.hpp"
+#include "tissue/physical_ranges.hpp"
 
 namespace echosim::fit {
 namespace {
@@ -106,6 +110,32 @@ void initial_spring(const std::vector<std::pair<double, double>>& uf, double& a,
     a = std::clamp(a, 1e-4 * b, 0.95 * b / std::max(umax, 1e-3));
 }
 
+// Measurements that cannot determine the model are refused before the optimiser runs: the sample
+// points must be distinct places on the skin, and each point's indenter samples must reach at
+// least two depths with a force (a spring's a and b are two unknowns).
+void check_identifiable(const MeasurementSet& set, const SampleMesh& mesh)
+{
+    for (const auto& spring : mesh.springs)
+        if (!tissue::range_defect(tissue::kSpringRestLength, spring.rest_length).empty()) {
+            char why[200];
+            std::snprintf(why, sizeof why, "measurements: sample points %u and %u lie %g mm apart: the points must be distinct places on "
+                          "the skin, %g to %g mm from their neighbours", spring.i, spring.j, spring.rest_length,
+                          tissue::kSpringRestLength.lo, tissue::kSpringRestLength.hi);
+            throw MeasurementError(why);
+        }
+    std::array<std::vector<double>, SampleGrid::count> depths;
+    for (const Sample& s : set.samples)
+        if (s.probe == ProbeKind::indenter && s.force_N > 0) depths[std::size_t(s.point)].push_back(s.depth_mm);
+    for (int p = 0; p < SampleGrid::count; ++p) {
+        auto& d = depths[std::size_t(p)];
+        std::sort(d.begin(), d.end());
+        const auto distinct = std::unique(d.begin(), d.end()) - d.begin();
+        if (distinct < 2)
+            throw MeasurementError("measurements: point " + std::to_string(p) + " has indenter samples with a force at " +
+                                   std::to_string(distinct) + " depth(s): its spring's two parameters need at least two");
+    }
+}
+
 }  // namespace
 
 const char* to_string(Method m) { return m == Method::steepest_descent ? "steepest-descent" : "levenberg-marquardt"; }
@@ -145,6 +175,7 @@ FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
     FitResult result;
     result.method = options.method;
     const SampleMesh mesh = sample_mesh(set);
+    check_identifiable(set, mesh);
     const std::vector<InteractionSample> prepared = prepare_interaction(mesh, set);
 
     // step 1: every point's spring from its indenter samples alone
@@ -222,6 +253,12 @@ FitResult fit_tissue(const MeasurementSet& set, const FitOptions& options)
     mean_k /= SampleGrid::count;
     const double node_mass = mean_area * tissue::kSurfaceMassPerArea;
     result.params.mu = 2.0 * options.damping_ratio * std::sqrt(1000.0 * (mean_k + 8.0 * result.params.lambda) * node_mass) * 1e-3;
+
+    // data that cannot pin a parameter down lets the optimiser walk it anywhere (1e-128 N/mm):
+    // refused, not returned as a model
+    if (const tissue::ParameterDefect d = tissue::sample_parameters_defect(result.params))
+        throw MeasurementError("measurements: the fit's " + d.field + " came out at " + d.why +
+                               ": these measurements do not determine the model");
 
     result.predicted = predict(prepared, set.samples.size(), result.params);
     const ProbeKind indenter = ProbeKind::indenter, probe = ProbeKind::probe;

@@ -1,11 +1,13 @@
 #include "tissue/tissue_json.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "io/partial_file.hpp"
+#include "tissue/physical_ranges.hpp"
 
 namespace echosim::tissue {
 namespace {
@@ -40,8 +42,11 @@ public:
         const json& v = at(obj, field, name);
         if (!v.is_number()) fail(name, "not a number");
         const double d = v.get<double>();
-        if (!std::isfinite(d) || d < lo || d > hi)
-            fail(name, std::to_string(d) + " outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        if (!std::isfinite(d) || d < lo || d > hi) {
+            char why[96];
+            std::snprintf(why, sizeof why, "%g outside [%g, %g]", d, lo, hi);
+            fail(name, why);
+        }
         return d;
     }
     std::vector<double> numbers(const json& obj, const std::string& field, std::size_t n, double lo, double hi) const
@@ -125,17 +130,22 @@ TissueModel read_tissue_model(const std::filesystem::path& path)
     m.refine = int(r.number(grid, "refine", "grid.refine", 1, 64));
     if (m.rows != (SampleGrid::rows - 1) * m.refine + 1 || m.cols != (SampleGrid::cols - 1) * m.refine + 1)
         r.fail("grid", "rows and cols do not match refine " + std::to_string(m.refine));
-    m.lambda = r.number(j, "lambda_N_per_mm", "lambda_N_per_mm", 0, 1e6);
-    m.mu = r.number(j, "mu_Ns_per_mm", "mu_Ns_per_mm", 0, 1e6);
+    // the ranges here only keep the numbers finite; physical_ranges.hpp's are checked below
+    m.lambda = r.number(j, "lambda_N_per_mm", "lambda_N_per_mm", 0, 1e300);
+    m.mu = r.number(j, "mu_Ns_per_mm", "mu_Ns_per_mm", 0, 1e300);
     if (j.contains("provenance") && j["provenance"].is_string()) m.provenance = j["provenance"].get<std::string>();
 
     const json& samples = r.at(j, "samples", "samples");
-    const auto sa = r.numbers(samples, "a_per_N", SampleGrid::count, 0, 1e6);
-    const auto sb = r.numbers(samples, "b_mm_per_N", SampleGrid::count, 1e-9, 1e6);
+    const auto sa = r.numbers(samples, "a_per_N", SampleGrid::count, 0, 1e300);
+    const auto sb = r.numbers(samples, "b_mm_per_N", SampleGrid::count, 0, 1e300);
     std::copy(sa.begin(), sa.end(), m.samples.a.begin());
     std::copy(sb.begin(), sb.end(), m.samples.b.begin());
+    // a refined model's mu is the sample points' over r^2 (tissue_model.hpp)
+    const double scale = double(m.refine) * double(m.refine);
     m.samples.lambda = m.lambda;
-    m.samples.mu = m.mu;
+    m.samples.mu = m.mu * scale;
+    if (const ParameterDefect d = sample_parameters_defect(m.samples))
+        r.fail(d.field, d.field == "mu_Ns_per_mm" && m.refine > 1 ? d.why + ", times refine^2 = " + std::to_string(int(scale)) : d.why);
 
     if (j.contains("fit") && j["fit"].is_object()) {
         const json& f = j["fit"];
@@ -156,9 +166,16 @@ TissueModel read_tissue_model(const std::filesystem::path& path)
     for (std::size_t i = 0; i < n; ++i)
         if (std::abs(std::sqrt(m.normals[i].x * m.normals[i].x + m.normals[i].y * m.normals[i].y + m.normals[i].z * m.normals[i].z) - 1.0) > 1e-3)
             r.fail("normal[" + std::to_string(i) + "]", "not of unit length");
-    m.mass = r.numbers(nodes, "mass_kg", n, 1e-12, 1e3);
-    m.a = r.numbers(nodes, "a_per_N", n, 0, 1e9);
-    m.b = r.numbers(nodes, "b_mm_per_N", n, 1e-12, 1e9);
+    m.mass = r.numbers(nodes, "mass_kg", n, 0, 1e300);
+    m.a = r.numbers(nodes, "a_per_N", n, 0, 1e300);
+    m.b = r.numbers(nodes, "b_mm_per_N", n, 0, 1e300);
+    // every node against the sample points' ranges, scaled back by its 1/r^2 share of area
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::string index = "[" + std::to_string(i) + "]";
+        if (const ParameterDefect d = spring_defect(m.a[i] / scale, m.b[i] / scale, "nodes.a_per_N" + index, "nodes.b_mm_per_N" + index))
+            r.fail(d.field, d.why);
+        if (const std::string d = range_defect(kSampleMass, m.mass[i] * scale); !d.empty()) r.fail("nodes.mass_kg" + index, d);
+    }
     const auto boundary = r.numbers(nodes, "boundary", n, 0, 1);
     m.boundary.assign(boundary.begin(), boundary.end());
 
@@ -169,7 +186,8 @@ TissueModel read_tissue_model(const std::filesystem::path& path)
         if (!springs[s].is_array() || springs[s].size() != 3) r.fail(name, "expected [i, j, rest_mm]");
         const double i = r.number(json{{"x", springs[s][0]}}, "x", name + ".i", 0, double(n - 1));
         const double k = r.number(json{{"x", springs[s][1]}}, "x", name + ".j", 0, double(n - 1));
-        const double rest = r.number(json{{"x", springs[s][2]}}, "x", name + ".rest_mm", 1e-6, 1e6);
+        const double rest = r.number(json{{"x", springs[s][2]}}, "x", name + ".rest_mm", 0, 1e300);
+        if (const std::string d = range_defect(kSpringRestLength, rest); !d.empty()) r.fail(name + ".rest_mm", d);
         if (i == k || i != std::floor(i) || k != std::floor(k)) r.fail(name, "i and j must be two different node indices");
         m.springs.push_back({std::uint32_t(i), std::uint32_t(k), rest});
     }

@@ -96,5 +96,37 @@ TEST(Fit, SteepestDescentEndsNoBetterThanLevenbergMarquardt)
     EXPECT_GE(slow.step2_cost, lm.step2_cost * 0.999);
 }
 
+std::string fit_error(const MeasurementSet& set)
+{
+    try {
+        fit_tissue(set);
+    } catch (const MeasurementError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+// Measurements that cannot determine the model: refused before the fit, naming why, instead of a
+// model with lambda = 1e-128 N/mm.
+TEST(Fit, DegenerateMeasurementsAreRefused)
+{
+    MeasurementSet one_place = campaign();
+    for (Sample& s : one_place.samples) s.position = campaign().samples.front().position;
+    std::string why = fit_error(one_place);
+    EXPECT_NE(why.find("sample points 0 and 1 lie 0 mm apart"), std::string::npos) << why;
+
+    MeasurementSet one_depth = campaign();
+    for (Sample& s : one_depth.samples)
+        if (s.point == 17) s.depth_mm = 4.0;
+    why = fit_error(one_depth);
+    EXPECT_NE(why.find("point 17 has indenter samples with a force at 1 depth(s)"), std::string::npos) << why;
+
+    // forces that do not grow with depth: no spring explains them, and lambda runs off
+    MeasurementSet flat = campaign();
+    for (Sample& s : flat.samples) s.force_N = 0.001 * (1 + s.point % 2);
+    why = fit_error(flat);
+    EXPECT_NE(why.find("do not determine the model"), std::string::npos) << why;
+}
+
 }  // namespace
 }  // namespace echosim::fit

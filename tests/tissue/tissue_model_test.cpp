@@ -1,5 +1,6 @@
 #include "tissue/tissue_model.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -9,6 +10,7 @@
 
 #include "scene/leg.hpp"
 #include "tissue/nonlinear_spring.hpp"
+#include "tissue/physical_ranges.hpp"
 #include "tissue/tissue_json.hpp"
 
 namespace echosim::tissue {
@@ -140,6 +142,75 @@ TEST(TissueJson, BadFilesNameTheField)
     EXPECT_NE(message(text.substr(0, text.size() / 2)).find("not valid JSON"), std::string::npos);
     EXPECT_NE(message(replaced("\"format\": \"echosim-tissue-model\"", "\"format\": \"other\"")).find("'format'"), std::string::npos);
     std::filesystem::remove(good);
+}
+
+// Values inside the reader's number ranges but not a thigh's: refused with the field, the value
+// and the physical range (the damping below settled 20x slower and reported a force that had not
+// settled).
+TEST(TissueJson, PhysicallyAbsurdParametersAreRefusedByName)
+{
+    const scene::LegModel leg;
+    auto message = [&](TissueModel m) {
+        const auto path = temp("absurd.json");
+        write_tissue_model(path, m);
+        std::string what = "no error";
+        try {
+            read_tissue_model(path);
+        } catch (const ModelFileError& e) {
+            what = e.what();
+        }
+        std::filesystem::remove(path);
+        return what;
+    };
+    const TissueModel good = build_tissue_model(leg, varied_parameters(), 2);
+    EXPECT_EQ(message(good), "no error");
+
+    TissueModel m = good;
+    m.mu = 65537.0;
+    std::string why = message(m);
+    EXPECT_NE(why.find("'mu_Ns_per_mm'"), std::string::npos) << why;
+    EXPECT_NE(why.find("physical range [0, 0.1] N s/mm"), std::string::npos) << why;
+
+    m = good;
+    m.lambda = 1e-128;
+    why = message(m);
+    EXPECT_NE(why.find("'lambda_N_per_mm': 1e-128 N/mm outside the physical range"), std::string::npos) << why;
+
+    m = good;
+    m.samples.b[7] = 1e-4;  // 10,000 N/mm at rest: steel, not skin
+    why = message(m);
+    EXPECT_NE(why.find("'samples.b_mm_per_N[7]'"), std::string::npos) << why;
+    EXPECT_NE(why.find("rest stiffness"), std::string::npos) << why;
+
+    m = good;
+    m.samples.a[3] = m.samples.b[3] / 0.01;  // bottoms out after 0.01 mm
+    why = message(m);
+    EXPECT_NE(why.find("'samples.a_per_N[3]'"), std::string::npos) << why;
+    EXPECT_NE(why.find("bottoming depth"), std::string::npos) << why;
+
+    // a node of a refined model is checked scaled back to a sample point's share (x r^2 = 4):
+    // 0.3 g is a plausible sample point's mass, but at refine 2 the node carries a quarter of it
+    m = good;
+    m.mass[5] = 0.5;
+    why = message(m);
+    EXPECT_NE(why.find("'nodes.mass_kg[5]': 2 kg outside the physical range"), std::string::npos) << why;
+
+    m = good;
+    m.springs[4].rest_length = 1e-5;
+    why = message(m);
+    EXPECT_NE(why.find("'springs_i_j_rest_mm[4].rest_mm'"), std::string::npos) << why;
+}
+
+TEST(PhysicalRanges, TheShippedThighLiesWellInside)
+{
+    const TissueModel shipped = read_tissue_model(std::filesystem::path(ECHOSIM_ASSET_DIR) / "models" / "thigh.json");
+    EXPECT_FALSE(sample_parameters_defect(shipped.samples)) << sample_parameters_defect(shipped.samples).why;
+    // a decade inside every bound the shipped values approach
+    SampleParameters tenfold = shipped.samples;
+    tenfold.mu *= 10, tenfold.lambda /= 10;
+    for (double& b : tenfold.b) b *= 10;
+    EXPECT_FALSE(sample_parameters_defect(tenfold));
+    EXPECT_EQ(range_defect(kSurfaceDamping, std::nan("")), "nan N s/mm outside the physical range [0, 0.1] N s/mm (surface spring damping mu)");
 }
 
 }  // namespace
