@@ -48,7 +48,9 @@ int run_render(const RenderArgs& args)
 {
     // check what the user gave before spending time on Vulkan
     if (!output_path_usable("render", "--out", args.out)) return kExitBadInput;
-    DefaultScene scene;  // the session on the lock-step clock: only what is asked of it is simulated
+    session::SessionOptions options;  // the lock-step clock: only what is asked of the session is simulated
+    if (!read_model_option("render", args.model, options.tissue)) return kExitBadInput;
+    DefaultScene scene(options);
     if (!args.pose.empty()) {
         try {
             scene.session.place_probe({parse_pose(args.pose), 0.0});
@@ -67,7 +69,8 @@ int run_render(const RenderArgs& args)
     }
 
     const auto start = std::chrono::steady_clock::now();
-    if (args.press_mm >= 0) scene.session.press_and_settle(scene.session.probe().rest, args.press_mm);
+    session::SettleReport settle;
+    if (args.press_mm >= 0) settle = scene.session.press_and_settle(scene.session.probe().rest, args.press_mm);
     const session::SessionView& state = scene.session.view();
     if (state.resets > 0) std::fprintf(stderr, "echosim render: the tissue simulation was reset %d times\n", state.resets);
     const HeadlessFrame frame = render_headless(context_options(args.gpu), scene.meshes(), scene.frame_view(), args.width, args.height);
@@ -75,8 +78,14 @@ int run_render(const RenderArgs& args)
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("echosim render: wrote %s (%ux%u) on %s in %.0f ms\n", args.out.c_str(), frame.image.width,
                 frame.image.height, frame.device.c_str(), ms);
+    if (args.press_mm >= 0 && !settle.settled) {
+        // the image shows the tissue as it is; a force it has not reached is not reported
+        std::fprintf(stderr, "echosim render: %s\n", session::not_settled_message(args.press_mm, settle).c_str());
+        return kExitFailure;
+    }
     if (args.press_mm >= 0)
-        std::printf("echosim render: probe pressed %.1f mm, tissue pushes back %.2f N\n", args.press_mm, state.probe_force_N);
+        std::printf("echosim render: probe pressed %.1f mm, tissue pushes back %.2f N (settled after %.2f s; ripple +/- %.2f N)\n",
+                    args.press_mm, settle.force_N, settle.seconds, settle.ripple_N);
     if (frame.validation_messages > 0) {
         std::fprintf(stderr, "echosim render: Vulkan validation reported %u message(s)\n", frame.validation_messages);
         return kExitValidation;

@@ -62,6 +62,7 @@ int run_slice(const SliceArgs& args)
         return fail("--press-mm " + std::to_string(args.press_mm) + ": must be in 0.." + std::to_string(session::Session::kMaxPressMm));
 
     session::SessionOptions options;
+    if (!read_model_option("slice", args.model, options.tissue)) return kExitBadInput;
     try {
         options.image = echo::plane_with_pixel(args.width_mm, args.depth_mm, args.pixel_mm);
         options.patient.which = echo::parse_case(args.case_name);
@@ -83,16 +84,21 @@ int run_slice(const SliceArgs& args)
     if (args.volume.empty()) std::fprintf(stderr, "\n");
 
     session::Session session(options);
+    session::SettleReport settle;  // none: resting on the skin
     try {
         const Pose rest = args.pose.empty() ? session.probe().rest : parse_pose(args.pose);
         session.place_probe({rest, 0.0});
         // press_to_force leaves the tissue settled at the press it found
         if (args.force_n >= 0)
-            session.press_to_force(rest, args.force_n);
+            settle = session.press_to_force(rest, args.force_n);
         else if (args.press_mm > 0)
-            session.press_and_settle(rest, args.press_mm);
+            if (settle = session.press_and_settle(rest, args.press_mm); !settle.settled)
+                throw std::runtime_error(session::not_settled_message(args.press_mm, settle));
     } catch (const std::invalid_argument& e) {
         return fail(std::string(args.force_n >= 0 ? "--force: " : "--pose: ") + e.what());
+    } catch (const std::runtime_error& e) {
+        std::fprintf(stderr, "echosim slice: %s\n", e.what());
+        return kExitFailure;
     }
     const session::SessionView& view = session.view();
     echo::EchoFrame frame = *view.echo;
@@ -131,8 +137,8 @@ int run_slice(const SliceArgs& args)
     std::printf("echosim slice: %ux%u image of %s on %s in %.0f ms, written to %s\n", image.columns, image.rows, volumes.description.c_str(),
                 device.c_str(), ms, args.out.c_str());
     if (view.press_mm > 0)
-        std::printf("echosim slice: probe pressed %.1f mm, tissue pushes back %.2f N (%.1f kPa over the face)\n", view.press_mm,
-                    view.probe_force_N, frame.skin_pressure_kpa);
+        std::printf("echosim slice: probe pressed %.1f mm, tissue pushes back %.2f N (ripple +/- %.2f N; %.1f kPa over the face)\n",
+                    settle.press_mm, settle.force_N, settle.ripple_N, frame.skin_pressure_kpa);
     if (messages > 0) {
         std::fprintf(stderr, "echosim slice: Vulkan validation reported %u message(s)\n", messages);
         return kExitValidation;

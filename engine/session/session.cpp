@@ -2,13 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <deque>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
 namespace echosim::session {
 
 Session::Session(const SessionOptions& options)
-    : options_(options), compiled_(physics::compile_model(load_simulation_model(leg_, options.refine), options.physics)),
+    : options_(options), compiled_(physics::compile_model(options.tissue ? tissue::build_tissue_model(leg_, *options.tissue, options.refine)
+                                                                      : load_simulation_model(leg_, options.refine),
+                                                       options.physics)),
       physics_(compiled_), mapping_(leg_), deformer_(leg_, compiled_->tissue), indentation_(*compiled_), patch_(leg_.patch().rest.vertices)
 {
     echo::check_plane(options_.image);
@@ -82,36 +87,74 @@ void Session::advance(double dt)
     }
 }
 
-void Session::press_and_settle(const Pose& rest, double press_mm, double settle_s)
+SettleReport Session::press_and_settle(const Pose& rest, double press_mm, double settle_s)
 {
     if (options_.clock != Clock::lock_step) throw std::logic_error("Session::press_and_settle needs the lock-step clock");
     constexpr double ramp = 0.1;  // [s]
     const double dt = options_.physics.time_step, start = time_;
-    while (time_ - start < settle_s - 0.5 * dt) {
+    const auto window = std::max<std::size_t>(1, std::size_t(std::lround(kSettleWindowS / dt)));
+    const int resets_before = physics_.latest().resets;
+    std::deque<double> forces;  // the last two windows' forces, one a step
+    SettleReport report;
+    report.press_mm = press_mm;
+    for (;;) {
         place_probe({rest, press_mm * std::min(1.0, (time_ + dt - start) / ramp)});
         advance(dt);
+        const physics::SurfaceSnapshot& snap = physics_.latest();
+        report.seconds = time_ - start;
+        report.resets = snap.resets - resets_before;
+        forces.push_back(snap.probe_force_N);
+        if (forces.size() > 2 * window) forces.pop_front();
+        if (report.seconds < std::max(settle_s, ramp) - 0.5 * dt || forces.size() < 2 * window) continue;
+        const auto middle = forces.begin() + std::ptrdiff_t(window);
+        const double before = std::accumulate(forces.begin(), middle, 0.0) / double(window);
+        report.force_N = std::accumulate(middle, forces.end(), 0.0) / double(window);
+        const auto [lo, hi] = std::minmax_element(middle, forces.end());
+        report.ripple_N = 0.5 * (*hi - *lo);
+        report.drift_N = std::abs(report.force_N - before);
+        report.settled = report.resets == 0 && report.drift_N < settled_change_N(report.force_N);
+        if (report.settled || report.seconds >= kMaxSettleS - 0.5 * dt) return report;
     }
 }
 
-double Session::press_to_force(const Pose& rest, double force_N)
+SettleReport Session::press_to_force(const Pose& rest, double force_N)
 {
     if (!(force_N > 0) || !std::isfinite(force_N))
         throw std::invalid_argument("probe force " + std::to_string(force_N) + " N: must be finite and > 0");
+    auto settle = [&](double press) {
+        const SettleReport r = press_and_settle(rest, press);
+        if (!r.settled) throw std::runtime_error(not_settled_message(press, r));
+        return r;
+    };
     // the force grows with the press: bisect the press, each guess settled from the last
-    double lo = 0, hi = kMaxPressMm, press = 0;
-    press_and_settle(rest, hi);
-    const double deepest = view().probe_force_N;
-    if (deepest < force_N)
+    double lo = 0, hi = kMaxPressMm;
+    SettleReport r = settle(hi);
+    if (r.force_N < force_N)
         throw std::invalid_argument("probe force " + std::to_string(force_N) + " N: out of reach, the tissue pushes back " +
-                                    std::to_string(deepest) + " N at the deepest press (" + std::to_string(kMaxPressMm) + " mm)");
+                                    std::to_string(r.force_N) + " N at the deepest press (" + std::to_string(kMaxPressMm) + " mm)");
     for (int i = 0; i < 40; ++i) {
-        press = 0.5 * (lo + hi);
-        press_and_settle(rest, press);
-        const double f = view().probe_force_N;
-        if (std::abs(f - force_N) <= 0.02 * force_N) break;
-        (f < force_N ? lo : hi) = press;
+        r = settle(0.5 * (lo + hi));
+        if (std::abs(r.force_N - force_N) <= 0.02 * force_N) break;
+        (r.force_N < force_N ? lo : hi) = r.press_mm;
     }
-    return press;
+    return r;
+}
+
+std::string not_settled_message(double press_mm, const SettleReport& r)
+{
+    char text[400];
+    if (r.resets > 0)
+        std::snprintf(text, sizeof text,
+                      "the tissue simulation exploded under a %.2f mm press and was reset %d time(s) in %.1f s of simulated time: no "
+                      "force to report",
+                      press_mm, r.resets, r.seconds);
+    else
+        std::snprintf(text, sizeof text,
+                      "the tissue has not settled under a %.2f mm press after %.1f s of simulated time: its mean push on the probe "
+                      "(now %.3f N) still moved %.3f N in the last %.0f ms; the model's damping or stiffness is outside what a thigh "
+                      "settles with",
+                      press_mm, r.seconds, r.force_N, r.drift_N, 1000 * kSettleWindowS);
+    return text;
 }
 
 const SessionView& Session::view()

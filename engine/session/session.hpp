@@ -36,8 +36,12 @@
 // are for sessions without a device.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/pose.hpp"
@@ -67,6 +71,9 @@ struct SessionOptions {
     physics::PhysicsOptions physics;
     echo::ImagePlane image;   // the echographic image's plane and pixels
     echo::PatientCase patient;
+    // the tissue's parameters (a fitted model's samples, tissue/tissue_json.hpp); none: the shipped
+    // thigh's (assets/models/thigh.json)
+    std::optional<tissue::SampleParameters> tissue;
     // the device that moves the probe through the haptic loop; none: the driver places it
     std::shared_ptr<device::Device> device;
     haptics::HapticOptions haptics;
@@ -79,6 +86,26 @@ struct ProbePlacement {
     double press_mm = 0;  // [mm], >= 0
     Pose face() const { return pressed_along_beam(rest, press_mm); }
 };
+
+// How a press settled (Session::press_and_settle). The force is the mean over the last
+// kSettleWindowS: under deep presses the 2,500-node patch's contact ripples from step to step
+// (bench/RESULTS.md, "Settling"), and the mean is what a hand or a force gauge would read.
+struct SettleReport {
+    bool settled = false;
+    double press_mm = 0;  // the press it settled under [mm]
+    double seconds = 0;   // simulated time from the start of the press [s]
+    double force_N = 0;   // the tissue's mean push on the probe over the last window
+    double drift_N = 0;   // how much that mean moved since the window before [N]
+    double ripple_N = 0;  // half the force's peak-to-peak within the last window [N]
+    int resets = 0;       // times the physics reset an exploded state during the press
+};
+inline constexpr double kSettleWindowS = 0.05;  // [s]
+inline constexpr double kMaxSettleS = 3.0;       // [s] of simulated time
+// settled: the window's mean moved by less than this (2 mN, or 0.5 % of a larger force), and the
+// physics did not reset
+inline double settled_change_N(double force_N) { return std::max(0.002, 0.005 * std::abs(force_N)); }
+// "the tissue has not settled under a P mm press after S s ...": what to say instead of a force
+std::string not_settled_message(double press_mm, const SettleReport& report);
 
 // What the simulation looks like now, for the scene pass (through the frame view) and the user.
 struct SessionView {
@@ -134,13 +161,17 @@ public:
     // the new time, stepping the physics in between; real time leaves both to their threads.
     void advance(double dt);
     // Lock-step: presses the probe resting at `rest` in to `press_mm` over 0.1 s, then holds it
-    // until `settle_s` of simulated time, so the tissue settles under it.
-    void press_and_settle(const Pose& rest, double press_mm, double settle_s = 0.4);
+    // for at least `settle_s` of simulated time and on until the tissue has settled under it (the
+    // mean force on the probe over kSettleWindowS moves by less than settled_change_N from one
+    // window to the next), giving up after kMaxSettleS. Whoever reports the force must look at `settled` first: a model that creeps
+    // would otherwise report a force it has not reached.
+    SettleReport press_and_settle(const Pose& rest, double press_mm, double settle_s = 0.4);
     // Lock-step: presses the probe resting at `rest` until the tissue pushes back with `force_N`
-    // (within 2 %, settled as press_and_settle settles), and returns the press [mm]. Throws
+    // (within 2 %, settled as press_and_settle settles), and returns how it settled there. Throws
     // std::invalid_argument when the force is not finite and positive, or out of reach of the
-    // deepest press (25 mm), naming the force it reaches there.
-    double press_to_force(const Pose& rest, double force_N);
+    // deepest press (25 mm), naming the force it reaches there, and std::runtime_error when the
+    // tissue does not settle.
+    SettleReport press_to_force(const Pose& rest, double force_N);
 
     // The newest physics state on the render patch (deformed again only when a new step arrived).
     const SessionView& view();

@@ -49,12 +49,12 @@ Exam examine(Case which, double force_N)
     EchoFrame rest = *s.view().echo;
     rest.columns.clear();
     e.rest = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), rest, {}, s.patient(), true));
-    s.press_to_force(s.probe().rest, force_N);
+    const session::SettleReport settled = s.press_to_force(s.probe().rest, force_N);
     const session::SessionView& view = s.view();
     EchoFrame pressed = *view.echo;
     pressed.time_s = 0;  // diastole: the artery at its narrowest
     e.pressed = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), pressed, {}, s.patient(), true));
-    e.force_N = view.probe_force_N;
+    e.force_N = settled.force_N;  // the mean over the settle's last window (the contact ripples at deep presses)
     std::printf("%s at %.1f N: vein %.0f -> %.0f px, artery %.0f -> %.0f px\n", case_name(which), e.force_N, e.rest.vein, e.pressed.vein,
                 e.rest.artery, e.pressed.artery);
     return e;

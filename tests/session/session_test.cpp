@@ -111,5 +111,43 @@ TEST(Session, RefusesWhatIsNotAProbeOrATime)
     real_time.stop();
 }
 
+// A press is held until the force on the probe stops changing; the force it then reports is the
+// one a much longer hold reaches.
+TEST(Session, APressSettlesBeforeItsForceIsReported)
+{
+    Session s;
+    const SettleReport r = s.press_and_settle(s.probe().rest, 8.0);
+    ASSERT_TRUE(r.settled) << not_settled_message(8.0, r);
+    EXPECT_GE(r.seconds, 0.4 - 1e-9);
+    EXPECT_LT(r.drift_N, settled_change_N(r.force_N));
+    EXPECT_EQ(r.resets, 0);
+    EXPECT_NEAR(r.force_N, s.view().probe_force_N, r.ripple_N + 1e-9);
+    Session longer;
+    longer.press_and_settle(longer.probe().rest, 8.0, 2.5);
+    EXPECT_NEAR(r.force_N, longer.view().probe_force_N, 0.02 * r.force_N);
+}
+
+// A model that creeps (a damping of 65,537 N s/mm, which the model file's reader refuses, given
+// here directly) does not settle in kMaxSettleS: the report says so instead of a force.
+TEST(Session, ATissueThatCreepsIsReportedUnsettled)
+{
+    SessionOptions options;
+    options.refine = 2;
+    tissue::SampleParameters p;
+    for (std::size_t i = 0; i < p.a.size(); ++i) p.b[i] = 5.0, p.a[i] = 0.1;
+    p.lambda = 5e-4;
+    p.mu = 65537.0;
+    options.tissue = p;
+    Session s(options);
+    const SettleReport r = s.press_and_settle(s.probe().rest, 1.0);
+    EXPECT_FALSE(r.settled);
+    EXPECT_NEAR(r.seconds, kMaxSettleS, 1e-6);
+    EXPECT_GE(r.drift_N, settled_change_N(r.force_N));
+    const std::string why = not_settled_message(1.0, r);
+    EXPECT_NE(why.find("has not settled under a 1.00 mm press after 3.0 s"), std::string::npos) << why;
+    Session again(options);
+    EXPECT_THROW(again.press_to_force(again.probe().rest, 0.2), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace echosim::session
