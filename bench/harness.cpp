@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
+#include "io/partial_file.hpp"
 #include "bench/suites.hpp"
 
 namespace echosim::bench {
@@ -99,6 +100,7 @@ namespace echosim::app {
 int run_bench(const BenchArgs& args)
 {
     using namespace echosim::bench;
+    if (!args.json.empty() && !output_path_usable("bench", "--json", args.json)) return kExitBadInput;
     std::vector<const Suite*> chosen;
     for (const Suite& s : suites())
         if (args.names.empty() || std::find(args.names.begin(), args.names.end(), s.name) != args.names.end())
@@ -139,13 +141,8 @@ int run_bench(const BenchArgs& args)
         return kExitBadInput;
     }
     if (!args.json.empty()) {
-        std::ofstream out(args.json);
-        if (!out) {
-            std::fprintf(stderr, "echosim bench: --json %s: cannot open for writing\n", args.json.c_str());
-            return kExitBadInput;
-        }
         // one suite: its object as DESIGN.md shows it; several: an array of them
-        out << (report.size() == 1 ? report[0] : report).dump(2) << "\n";
+        io::write_file<std::runtime_error>(args.json, (report.size() == 1 ? report[0] : report).dump(2) + "\n");
     }
     return status;
 }

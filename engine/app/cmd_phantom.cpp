@@ -42,36 +42,43 @@ int run_phantom(const PhantomArgs& args)
         if (done % 20 == 0 || done == total) std::fprintf(stderr, "\rechosim phantom: frame %d of %d", done, total);
         if (done == total) std::fprintf(stderr, "\n");
     });
-    io::write_plus_mha(args.out, sweep.sweep, args.compressed);
     // the frames' tissue labels, a sweep of their own beside it, for reconstructing the labels
     io::Sweep labels = sweep.sweep;
     labels.pixels = sweep.labels;
     const auto label_path = label_sweep_path(args.out);
-    io::write_plus_mha(label_path, labels, true);
-    std::printf("echosim phantom: %s case, %zu frames of %ux%u (%.2f mm pixels) in %s, their labels in %s\n",
-                echo::case_name(which), sweep.sweep.frames.size(), sweep.sweep.width, sweep.sweep.height, args.pixel_mm,
-                args.out.c_str(), label_path.c_str());
 
+    io::Volume map;
     if (!args.labels.empty()) {
         // the phantom's own label map over the box the sweep spans, aligned with it as the
         // reconstruction's map is
         const echo::SweepBox box = echo::sweep_box(sweep.sweep);
         const double voxel = 0.3;
-        io::Volume v = io::make_volume({std::size_t((box.hi.x - box.lo.x) / voxel) + 1, std::size_t((box.hi.y - box.lo.y) / voxel) + 1,
-                                        std::size_t((box.hi.z - box.lo.z) / voxel) + 1},
-                                       io::VoxelType::uint8);
-        v.origin = box.axes * box.lo;
-        v.directions = box.axes * voxel;
-        std::uint8_t* d = v.as<std::uint8_t>();
-        for (std::size_t k = 0; k < v.size[2]; ++k)
-            for (std::size_t j = 0; j < v.size[1]; ++j)
-                for (std::size_t i = 0; i < v.size[0]; ++i)
-                    d[v.index(i, j, k)] = std::uint8_t(phantom.tissue_at(v.index_to_world(glm::dvec3(double(i), double(j), double(k)))));
-        for (int t = 0; t < echo::kTissueCount; ++t) v.key_values["label_" + std::to_string(t)] = echo::tissue_name(echo::Tissue(t));
-        v.key_values["case"] = echo::case_name(which);
-        io::write_nrrd(args.labels, v, true);
-        std::printf("echosim phantom: label map %zux%zux%zu (0.3 mm) in %s\n", v.size[0], v.size[1], v.size[2], args.labels.c_str());
+        map = io::make_volume({std::size_t((box.hi.x - box.lo.x) / voxel) + 1, std::size_t((box.hi.y - box.lo.y) / voxel) + 1,
+                               std::size_t((box.hi.z - box.lo.z) / voxel) + 1},
+                              io::VoxelType::uint8);
+        map.origin = box.axes * box.lo;
+        map.directions = box.axes * voxel;
+        std::uint8_t* d = map.as<std::uint8_t>();
+        for (std::size_t k = 0; k < map.size[2]; ++k)
+            for (std::size_t j = 0; j < map.size[1]; ++j)
+                for (std::size_t i = 0; i < map.size[0]; ++i)
+                    d[map.index(i, j, k)] = std::uint8_t(phantom.tissue_at(map.index_to_world(glm::dvec3(double(i), double(j), double(k)))));
+        for (int t = 0; t < echo::kTissueCount; ++t) map.key_values["label_" + std::to_string(t)] = echo::tissue_name(echo::Tissue(t));
+        map.key_values["case"] = echo::case_name(which);
     }
+    // the sweep, its labels and the map stay a set: all written, or none replaced
+    std::vector<std::filesystem::path> outputs{args.out, label_path};
+    if (!args.labels.empty()) outputs.push_back(args.labels);
+    write_together(outputs, [&](std::size_t i, const std::filesystem::path& path) {
+        if (i == 0) io::write_plus_mha(path, sweep.sweep, args.compressed);
+        else if (i == 1) io::write_plus_mha(path, labels, true);
+        else io::write_nrrd(path, map, true);
+    });
+    std::printf("echosim phantom: %s case, %zu frames of %ux%u (%.2f mm pixels) in %s, their labels in %s\n",
+                echo::case_name(which), sweep.sweep.frames.size(), sweep.sweep.width, sweep.sweep.height, args.pixel_mm,
+                args.out.c_str(), label_path.c_str());
+    if (!args.labels.empty())
+        std::printf("echosim phantom: label map %zux%zux%zu (0.3 mm) in %s\n", map.size[0], map.size[1], map.size[2], args.labels.c_str());
     return kExitOk;
 }
 

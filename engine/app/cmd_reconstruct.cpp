@@ -213,12 +213,28 @@ int run_reconstruct(const ReconstructArgs& args)
 
     io::Volume volume = r->volume();
     volume.key_values["echosim_source"] = args.sweep.filename().string();
+    io::Volume label_map;
+    if (with_labels) {
+        label_map = r->labels();
+        for (int t = 0; t < echo::kTissueCount; ++t) label_map.key_values["label_" + std::to_string(t)] = echo::tissue_name(echo::Tissue(t));
+    }
+    // the volume and its labels stay a pair: both written, or neither replaced
+    const std::filesystem::path lp = labels_path(args.out);
     try {
-        io::write_volume(args.out, volume, args.gzip);
+        std::vector<std::filesystem::path> outputs{args.out};
+        if (with_labels) outputs.push_back(lp);
+        write_together(outputs, [&](std::size_t i, const std::filesystem::path& path) {
+            if (i == 0) io::write_volume(path, volume, args.gzip);
+            else io::write_volume(path, label_map, true);
+        });
     } catch (const std::runtime_error& e) {
-        std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
+        std::fprintf(stderr, "echosim reconstruct: %s (nothing written; files already there are as they were)\n", e.what());
         return kExitFailure;
     }
+    // an earlier run's labels beside the new volume would be taken for its own
+    std::error_code ec;
+    if (!with_labels && std::filesystem::is_regular_file(lp, ec) && std::filesystem::remove(lp, ec))
+        std::printf("echosim reconstruct: removed %s: it labelled an earlier volume of that name\n", lp.c_str());
     std::printf("echosim reconstruct: %zux%zux%zu voxels (%llu MiB while working) in %s\n", volume.size[0], volume.size[1],
                 volume.size[2], static_cast<unsigned long long>(r->memory_bytes() >> 20), args.out.c_str());
     std::printf("echosim reconstruct: %zu frames in %.2f s (%.0f frames/s), %.1f %% of voxels hit", inserted, insert_s,
@@ -227,18 +243,7 @@ int run_reconstruct(const ReconstructArgs& args)
         std::printf(", %.1f %% after filling holes (%d passes, %.2f s)", 100.0 * double(r->filled_voxels()) / double(r->voxel_count()),
                     passes, fill_s);
     std::printf("\n");
-    if (with_labels) {
-        io::Volume l = r->labels();
-        for (int t = 0; t < echo::kTissueCount; ++t) l.key_values["label_" + std::to_string(t)] = echo::tissue_name(echo::Tissue(t));
-        const std::filesystem::path lp = labels_path(args.out);
-        try {
-            io::write_volume(lp, l, true);
-        } catch (const std::runtime_error& e) {
-            std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
-            return kExitFailure;
-        }
-        std::printf("echosim reconstruct: labels in %s\n", lp.c_str());
-    }
+    if (with_labels) std::printf("echosim reconstruct: labels in %s\n", lp.c_str());
     return kExitOk;
 }
 

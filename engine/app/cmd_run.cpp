@@ -110,6 +110,7 @@ int run_window(const RunArgs& args)
     }
 
     session::SessionOptions session_options{.clock = session::Clock::real_time};
+    if (!read_model_option("run", args.model, session_options.tissue)) return kExitBadInput;
     // the probe moves through the haptic loop: from the window's mouse and keyboard, a SpaceMouse,
     // a scripted trajectory, or nothing
     auto mouse = std::make_shared<device::MouseKeyboardDevice>();

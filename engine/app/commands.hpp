@@ -4,9 +4,12 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "tissue/tissue_model.hpp"
 
 namespace echosim::app {
 
@@ -21,6 +24,20 @@ inline constexpr int kExitValidation = 3;
 // spends time on work it cannot save.
 bool output_path_usable(const char* command, const char* option, const std::filesystem::path& path);
 
+// --model FILE: the tissue model a session runs (empty: the shipped thigh), read into `tissue`. A
+// file that cannot be read, or a model outside the physical ranges (tissue/physical_ranges.hpp), is
+// reported on stderr naming the command, the file and the field, and the call returns false.
+bool read_model_option(const char* command, const std::filesystem::path& file, std::optional<tissue::SampleParameters>& tissue);
+
+// Writes files that belong together (a volume and its labels, a sweep and its labels' sweep) so
+// that they stay a set: `write(i, path)` writes the i-th of `paths` into a private folder beside
+// it, and only once every one is complete are they all renamed into place (with any file a writer
+// put beside its own, such as a MetaImage's detached data). A failure midway leaves every old file
+// as it was and removes the new ones. Throws what `write` throws, or std::runtime_error naming the
+// file that could not be moved into place.
+void write_together(const std::vector<std::filesystem::path>& paths,
+                    const std::function<void(std::size_t, const std::filesystem::path&)>& write);
+
 struct GpuArgs {
     std::string gpu;          // --gpu NAME, else ECHOSIM_GPU
     bool validation = false;  // --validation, else ECHOSIM_VALIDATION or a debug build
@@ -34,6 +51,7 @@ struct RenderArgs {
     std::string pose;  // empty: the probe rests on the patch centre
     double press_mm = -1;  // < 0: no physics, the patch at rest
     std::string camera;    // yaw,pitch,distance[,x,y,z]; empty: the default view
+    std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
 };
 int run_render(const RenderArgs& args);
 
@@ -47,6 +65,7 @@ struct RunArgs {
     std::filesystem::path volume;  // empty: the case's default volume (made once, cached)
     std::filesystem::path labels;  // with --volume: its tissue labels (empty: linear deformation)
     std::string case_name = "healthy";
+    std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
     std::string device = "mouse";      // mouse, spacemouse or null
     std::filesystem::path trajectory;  // a scripted trajectory CSV instead of a device
     // --igtl [PORT]: serve the live image and probe over OpenIGTLink on this port, as written
@@ -106,6 +125,7 @@ struct SliceArgs {
     double press_mm = -1;          // < 0: not pressed (unless --force)
     double force_n = -1;           // < 0: not asked
     bool cpu = false;
+    std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
     std::string case_name = "healthy";
     double width_mm = 40, depth_mm = 50, pixel_mm = 0.1;
     double gain_db = 0, dynamic_range_db = 55;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "device/scripted_device.hpp"
+#include "io/partial_file.hpp"
 #include "io/plot.hpp"
 #include "io/png.hpp"
 #include "session/session.hpp"
@@ -106,15 +107,14 @@ void write_fig8(const Fig8Result& r, const std::filesystem::path& dir)
 
     const std::filesystem::path csv = dir / "force_log.csv";
     {
-        std::ofstream out(csv);
-        out << "t_s,local_model_N,held_physics_N,physics_step,on_skin\n";
+        std::string text = "t_s,local_model_N,held_physics_N,physics_step,on_skin\n";
         char line[160];
         for (const ForceLogRow& row : r.rows) {
             std::snprintf(line, sizeof line, "%.4f,%.6f,%.6f,%lld,%d\n", row.t_s, row.local_model_N, row.held_physics_N, row.physics_step,
                           int(row.on_skin));
-            out << line;
+            text += line;
         }
-        if (!out) throw std::runtime_error(csv.string() + ": cannot be written");
+        io::write_file<std::runtime_error>(csv, text);
     }
 
     io::Plot plot;
@@ -140,9 +140,7 @@ void write_fig8(const Fig8Result& r, const std::filesystem::path& dir)
                         {"local_model", {{"max_jump_N_per_ms", r.local_model.max_jump_N}, {"lost_contacts", r.local_model.lost_contacts}}},
                         {"held_physics", {{"max_jump_N_per_ms", r.held_physics.max_jump_N}, {"lost_contacts", r.held_physics.lost_contacts}}}};
     const std::filesystem::path summary = dir / "summary.json";
-    std::ofstream out(summary);
-    out << j.dump(2) << "\n";
-    if (!out) throw std::runtime_error(summary.string() + ": cannot be written");
+    io::write_file<std::runtime_error>(summary, j.dump(2) + "\n");
 }
 
 }  // namespace echosim::app

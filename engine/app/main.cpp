@@ -1,5 +1,6 @@
 // echosim: one binary, one subcommand per job (DESIGN.md §4).
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -38,6 +39,9 @@ CLI::Validator finite_range(double lo, double hi)
 int main(int argc, char** argv)
 {
     using namespace echosim::app;
+    // a file-size limit reached (ulimit -f) is a write error naming the file, as a full disk is,
+    // not a kill that would leave a half-written temporary file behind
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{"echosim: real-time echographic simulator with force feedback"};
     app.require_subcommand(1);
 
@@ -47,6 +51,7 @@ int main(int argc, char** argv)
     render_cmd->add_option("--width", render.width, "image width [px]")->check(finite_range(16u, 16384u));
     render_cmd->add_option("--height", render.height, "image height [px]")->check(finite_range(16u, 16384u));
     render_cmd->add_option("--pose", render.pose, "probe pose x,y,z,qw,qx,qy,qz in world (LPS mm)");
+    render_cmd->add_option("--model", render.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
     render_cmd->add_option("--press-mm", render.press_mm, "press the probe this far into the skin and let the tissue settle [mm]")
         ->check(finite_range(0.0, 30.0));
     render_cmd->add_option("--camera", render.camera,
@@ -63,6 +68,7 @@ int main(int argc, char** argv)
     run_cmd->add_flag("--exercise", run.exercise, "resize, minimise and toggle fullscreen while running (smoke test)");
     run_cmd->add_option("--volume", run.volume, "echographic volume (NRRD or MetaImage; not 8-bit: min..max mapped onto 0..255); default: the case's, made once and cached");
     run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
+    run_cmd->add_option("--model", run.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
     run_cmd->add_option("--case", run.case_name, "healthy, dvt-acute or dvt-chronic");
     run_cmd->add_option("--device", run.device, "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), null")
         ->check(CLI::IsMember({"mouse", "spacemouse", "null"}));
@@ -136,6 +142,7 @@ int main(int argc, char** argv)
     slice_cmd->add_option("--labels", slice.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
     slice_cmd->add_option("--out", slice.out, "image to write: .png, or .nrrd placed in the volume's space")->required();
     slice_cmd->add_option("--pose", slice.pose, "probe resting on the skin: x,y,z,qw,qx,qy,qz in world (LPS mm); default: the patch centre");
+    slice_cmd->add_option("--model", slice.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
     slice_cmd->add_option("--press-mm", slice.press_mm, "press the probe this far in and let the tissue settle [mm]")
         ->check(finite_range(0.0, 25.0));
     slice_cmd->add_option("--force", slice.force_n, "press the probe until the tissue pushes back this hard [N]")

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/partial_file.hpp"
 #include "io/plot.hpp"
 #include "tissue/nonlinear_spring.hpp"
 
@@ -84,11 +85,7 @@ void write_report(const std::filesystem::path& folder, const MeasurementSet& set
                         {"mu_Ns_per_mm", r.params.mu},
                         {"a_per_N", r.params.a},
                         {"b_mm_per_N", r.params.b}};
-    {
-        std::ofstream out(folder / "report.json");
-        out << j.dump(2) << "\n";
-        if (!out) throw std::runtime_error((folder / "report.json").string() + ": write failed");
-    }
+    io::write_file<std::runtime_error>(folder / "report.json", j.dump(2) + "\n");
 
     // Fig. 4: how many samples the model misses by how much (signed: model - measured)
     std::vector<double> errors;

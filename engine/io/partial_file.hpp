@@ -68,4 +68,13 @@ private:
     bool committed_ = false;
 };
 
+// A whole file at once, through PartialFile: the old file stays whole until the new one is.
+template <class Error>
+void write_file(const std::filesystem::path& path, const std::string& text)
+{
+    PartialFile<Error> out(path);
+    out.write(text);
+    out.commit();
+}
+
 }  // namespace echosim::io

@@ -104,9 +104,7 @@ void write_tissue_model(const std::filesystem::path& path, const TissueModel& m)
     for (const auto& s : m.springs) springs.push_back({s.i, s.j, s.rest_length});
     j["springs_i_j_rest_mm"] = springs;
 
-    io::PartialFile<ModelFileError> out(path);
-    out.write(j.dump(1) + "\n");
-    out.commit();
+    io::write_file<ModelFileError>(path, j.dump(1) + "\n");
 }
 
 TissueModel read_tissue_model(const std::filesystem::path& path)
