@@ -3,11 +3,11 @@
 #include <cstdint>
 
 #include "fit/measurements.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
-    fuzz::refusing<fit::MeasurementError>([&] { fit::read_measurements(fuzz::fuzz_file(data, size, "measurements.csv")); });
+    fuzz::refusing<fit::MeasurementError>([&] { fit::read_measurements(fuzz::input_file(data, size, "measurements.csv")); });
     return 0;
 }

@@ -4,12 +4,12 @@
 #include <cstdint>
 
 #include "io/metaimage.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
     fuzz::refusing<io::MetaImageError>(
-        [&] { io::read_metaimage_volume(fuzz::fuzz_file(data, size, "volume.mha"), fuzz::fuzz_memory_budget); });
+        [&] { io::read_metaimage_volume(fuzz::input_file(data, size, "volume.mha"), fuzz::fuzz_memory_budget); });
     return 0;
 }

@@ -3,11 +3,11 @@
 #include <cstdint>
 
 #include "io/nrrd.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
-    fuzz::refusing<io::NrrdError>([&] { io::read_nrrd(fuzz::fuzz_file(data, size, "volume.nrrd"), fuzz::fuzz_memory_budget); });
+    fuzz::refusing<io::NrrdError>([&] { io::read_nrrd(fuzz::input_file(data, size, "volume.nrrd"), fuzz::fuzz_memory_budget); });
     return 0;
 }

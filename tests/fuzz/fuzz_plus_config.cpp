@@ -3,11 +3,11 @@
 #include <cstdint>
 
 #include "io/plus_config.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
-    fuzz::refusing<io::PlusConfigError>([&] { io::read_plus_config(fuzz::fuzz_file(data, size, "PlusDeviceSet.xml")); });
+    fuzz::refusing<io::PlusConfigError>([&] { io::read_plus_config(fuzz::input_file(data, size, "PlusDeviceSet.xml")); });
     return 0;
 }

@@ -3,11 +3,11 @@
 #include <cstdint>
 
 #include "tissue/tissue_json.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
-    fuzz::refusing<tissue::ModelFileError>([&] { tissue::read_tissue_model(fuzz::fuzz_file(data, size, "model.json")); });
+    fuzz::refusing<tissue::ModelFileError>([&] { tissue::read_tissue_model(fuzz::input_file(data, size, "model.json")); });
     return 0;
 }

@@ -6,11 +6,11 @@
 #include <stdexcept>
 
 #include "device/trajectory.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
-    fuzz::refusing<std::invalid_argument>([&] { device::Trajectory::load(fuzz::fuzz_file(data, size, "trajectory.csv")); });
+    fuzz::refusing<std::invalid_argument>([&] { device::Trajectory::load(fuzz::input_file(data, size, "trajectory.csv")); });
     return 0;
 }

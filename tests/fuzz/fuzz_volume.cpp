@@ -5,12 +5,12 @@
 #include <cstdint>
 
 #include "io/volume_file.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     using namespace echosim;
     fuzz::refusing<io::NrrdError, io::MetaImageError, io::VolumeFileError>(
-        [&] { io::read_volume(fuzz::fuzz_file(data, size, "volume.nrrd")); });
+        [&] { io::read_volume(fuzz::input_file(data, size, "volume.nrrd")); });
     return 0;
 }

@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "io/plus_sequence.hpp"
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 namespace echosim::fuzz {
 

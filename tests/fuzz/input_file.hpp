@@ -1,5 +1,5 @@
 // The one piece every fuzz target shares: libFuzzer hands a target bytes, our readers take a path.
-// fuzz_file() writes the bytes to a file of the given name in a private folder (made once per
+// input_file() writes the bytes to a file of the given name in a private folder (made once per
 // process, on /dev/shm when there is one, removed at exit) and returns its path. The name's extension
 // matters to readers that go by it (.seq.nrrd, .mha) and keeps messages readable.
 //
@@ -16,7 +16,7 @@
 
 namespace echosim::fuzz {
 
-std::filesystem::path fuzz_file(const std::uint8_t* data, std::size_t size, std::string_view name);
+std::filesystem::path input_file(const std::uint8_t* data, std::size_t size, std::string_view name);
 
 template <class Read>
 void refusing(Read&& read)

@@ -1,4 +1,4 @@
-#include "fuzz_file.hpp"
+#include "input_file.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -36,7 +36,7 @@ const std::filesystem::path& private_folder()
 
 }  // namespace
 
-std::filesystem::path fuzz_file(const std::uint8_t* data, std::size_t size, std::string_view name)
+std::filesystem::path input_file(const std::uint8_t* data, std::size_t size, std::string_view name)
 {
     std::filesystem::path path = private_folder() / name;
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
