@@ -75,9 +75,22 @@ template <class Error>
     throw Error(path.string() + ": " + why);
 }
 
+// True when `path` names something that exists and is not a regular file: a device (/dev/zero, a
+// terminal), a FIFO, a socket, a folder. Readers refuse them: such a "file" may never end, or block.
+inline bool is_special_file(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    return !ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+}
+
+inline constexpr const char* not_regular_file = "not a regular file (a device, a FIFO or a folder)";
+
+// The file, opened for reading; a missing file, or one that is not a regular file, throws Error naming it.
 template <class Error>
 std::ifstream open_binary(const std::filesystem::path& path)
 {
+    if (is_special_file(path)) fail<Error>(path, std::string(not_regular_file) + ": refusing to read it");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail<Error>(path, "cannot open: " + std::generic_category().message(errno));
     return in;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/partial_file.hpp"
+#include "io/text_fields.hpp"
 #include "tissue/physical_ranges.hpp"
 
 namespace echosim::tissue {
@@ -111,8 +112,7 @@ void write_tissue_model(const std::filesystem::path& path, const TissueModel& m)
 
 TissueModel read_tissue_model(const std::filesystem::path& path)
 {
-    std::ifstream in(path);
-    if (!in) throw ModelFileError(path.string() + ": cannot open");
+    std::ifstream in = io::text::open_binary<ModelFileError>(path);  // refuses devices and FIFOs
     json j;
     try {
         j = json::parse(in);

@@ -490,5 +490,21 @@ TEST(PlusSequence, ReadsTheFrameAxisWhereverItStands)
     std::filesystem::remove(path);
 }
 
+// Issue 13's finding: a compressed sweep whose DimSize claims gigabytes (within the budget) over a few
+// bytes of payload made the reader reserve them all before finding the stream short. Now refused first.
+TEST(PlusSequence, RefusesACompressedSweepClaimingMoreThanItCouldHold)
+{
+    const auto path = temp("claims_huge.mha");
+    write_plus_mha(path, make_sweep(4, 3, 3), true);
+    write_bytes(path, with(read_bytes(path), "DimSize = 4 3 3", "DimSize = 65536 16384 3"));
+    expect_plus_error(path, {"CompressedData", "DimSize", "3221225472 bytes cannot come from", "1032"});
+    std::filesystem::remove(path);
+}
+
+TEST(PlusSequence, RefusesWhatIsNotARegularFile)
+{
+    test::expect_special_files_refused<PlusSequenceError>("plus_test", [](const std::filesystem::path& p) { read_plus_recording(p); });
+}
+
 }  // namespace
 }  // namespace echosim::io

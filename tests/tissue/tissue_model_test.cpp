@@ -12,6 +12,7 @@
 #include "tissue/nonlinear_spring.hpp"
 #include "tissue/physical_ranges.hpp"
 #include "tissue/tissue_json.hpp"
+#include "test_files.hpp"
 
 namespace echosim::tissue {
 namespace {
@@ -211,6 +212,11 @@ TEST(PhysicalRanges, TheShippedThighLiesWellInside)
     for (double& b : tenfold.b) b *= 10;
     EXPECT_FALSE(sample_parameters_defect(tenfold));
     EXPECT_EQ(range_defect(kSurfaceDamping, std::nan("")), "nan N s/mm outside the physical range [0, 0.1] N s/mm (surface spring damping mu)");
+}
+
+TEST(TissueJson, RefusesWhatIsNotARegularFile)
+{
+    test::expect_special_files_refused<ModelFileError>("tissue", [](const std::filesystem::path& p) { read_tissue_model(p); });
 }
 
 }  // namespace
