@@ -506,5 +506,17 @@ TEST(PlusSequence, RefusesWhatIsNotARegularFile)
     test::expect_special_files_refused<PlusSequenceError>("plus_test", [](const std::filesystem::path& p) { read_plus_recording(p); });
 }
 
+// Issue 13 (fuzzing): a transform from a frame to itself (ImageToImageTransform) escaped as a
+// TransformError from default_reference_frame; the reader refuses it by name, in a frame or file-wide.
+TEST(PlusSequence, RefusesATransformFromAFrameToItself)
+{
+    const std::string identity = " = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n";
+    const std::string f1 = "Seq_Frame0001_ImageToReferenceTransform";
+    expect_mha_error("itself.mha", with(good_mha(), f1, "Seq_Frame0001_ImageToImageTransform" + identity + f1),
+                     {"Seq_Frame0001_ImageToImageTransform", "to itself"});
+    expect_mha_error("itself_file.mha", with(good_mha(), "ElementType", "ProbeToProbeTransform" + identity + "ElementType"),
+                     {"ProbeToProbeTransform", "to itself"});
+}
+
 }  // namespace
 }  // namespace echosim::io
