@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # Writes the fuzz targets' seed corpus (tests/fuzz/corpus/TARGET/): small valid and near-valid files
 # shaped as the tests' fixtures and the project's writers make them (a few KB each; the shipped
-# measurements and tissue model cut down or compacted). Run once by hand; the seeds are committed.
+# measurements and tissue model cut down or compacted), and each target's dictionary
+# (tests/fuzz/dict/TARGET.dict). Run by hand; what it writes is committed.
 #   python3 tests/fuzz/make_seeds.py
 import os, zlib, gzip, json, struct, io
 here=os.path.dirname(os.path.abspath(__file__)); repo=os.path.dirname(os.path.dirname(here))
@@ -117,3 +118,52 @@ put('plus_seq_nrrd','list_first.seq.nrrd',(seq%'raw').replace('kinds: domain dom
 put('plus_seq_nrrd','four_d.seq.nrrd',(seq%'raw').replace('sizes: 3 2 2','sizes: 3 2 1 2').replace('dimension: 3','dimension: 4').replace('kinds: domain domain list','kinds: domain domain domain list').encode()+pix)
 for n in ['raw.igs.mha','zlib.igs.mha','probe_to_tracker.mha']: put('plus_sequence',n,open(os.path.join(root,'plus_mha',n),'rb').read())
 for n in ['raw.seq.nrrd','gz.seq.nrrd']: put('plus_sequence',n,open(os.path.join(root,'plus_seq_nrrd',n),'rb').read())
+
+# --- dictionaries (tests/fuzz/dict/TARGET.dict): the formats' keywords and the numbers that matter
+# (sizes past 32 and 64 bits, past the budgets, non-finite values, devices as data files), so that
+# libFuzzer's mutations reach past the header's spelling in seconds rather than hours
+numbers=['0','-1','1e999','-1e999','nan','inf','65536','4294967295','4294967296','2147483648','18446744073709551615',
+         '18446744073709551616','1e308','0.5','3 2 2','2048 2048 1024','65536 65536 65536']
+devices=['/dev/zero','/dev/stdin','/dev/null','.','..','/']
+nrrd_words=['NRRD0001','NRRD0004','NRRD0005','type: ','dimension: ','sizes: ','space: ','space directions: ','space origin: ',
+  'space dimension: ','space units: ','spacings: ','kinds: ','endian: ','encoding: ','data file: ','datafile: ','line skip: ',
+  'byte skip: ',':=','gzip','gz','raw','little','big','domain','space','list','none','???','unsigned char','unsigned short',
+  'short','float','double','left-posterior-superior','right-anterior-superior','left-anterior-superior','RAS','(1,0,0)','(0,0)',
+  '"mm"','\x1f\x8b\x08\x00','\n\n']
+meta_words=['ObjectType = Image','NDims = ','DimSize = ','ElementType = ','MET_UCHAR','MET_CHAR','MET_USHORT','MET_SHORT',
+  'MET_FLOAT','MET_DOUBLE','MET_INT','ElementDataFile = ','LOCAL','LIST','%03d','CompressedData = True','CompressedDataSize = ',
+  'BinaryData = False','BinaryDataByteOrderMSB = True','ElementByteOrderMSB = True','ElementNumberOfChannels = ',
+  'ElementSpacing = ','ElementSize = ','TransformMatrix = ','Offset = ','Position = ','Origin = ','AnatomicalOrientation = ',
+  'HeaderSize = ',' = ','\r\n','x\x9c','x\x01']
+plus_words=['Seq_Frame0000_','Seq_Frame0001_','Seq_Frame0002_','ImageToReferenceTransform','ProbeToTrackerTransform',
+  'ImageToProbeTransform','ReferenceToTrackerTransform','ImageToTrackerTransform','TransformStatus','Transform = ','OK',
+  'INVALID','MISSING','Timestamp = ','ImageStatus = ','Status:=','UltrasoundImageOrientation = ','ultrasound image orientation:=',
+  'MF','UF','MN','UN','MFA','AMF','Kinds = domain domain list','1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1']
+xml_words=['<?xml version="1.0"?>','<PlusConfiguration version="2.1">','</PlusConfiguration>','<CoordinateDefinitions>',
+  '</CoordinateDefinitions>','<Transform ','From="','To="','Matrix="','Valid="','<VolumeReconstruction ','/>','<!--','-->',
+  '<![CDATA[',']]>','&amp;','&#x41;','&#65;']+['%s="'%a for a in ['OutputSpacing','OutputOrigin','OutputExtent',
+  'ClipRectangleOrigin','ClipRectangleSize','Interpolation','CompoundingMode','Compounding','Calculation','FillHoles',
+  'HoleFilling','PixelRejectionThreshold','ReferenceCoordinateFrame','ImageCoordinateFrame','FanAnglesDeg','FanOrigin',
+  'FanDepth','Optimization','NumberOfThreads','SkipInterval','ImportanceMaskFilename','EnableFanAnglesAutoDetect']]+['LINEAR',
+  'NEAREST_NEIGHBOR','MEAN','MAXIMUM','LATEST','ON','OFF','TRUE','FALSE','FULL']
+json_words=['"%s":'%k for k in ['format','version','grid','rows','cols','refine','lambda_N_per_mm','mu_Ns_per_mm','samples',
+  'a_per_N','b_mm_per_N','fit','method','seconds','mae_N','sd_N','rel_error','nodes','position_mm','normal','mass_kg',
+  'boundary','springs_i_j_rest_mm','provenance']]+['"echosim-tissue-model"','null','true','[]','{}','[[[[[[[[',
+  '\\u0000','\\ud800']
+csv_words=['point','probe','x_mm','y_mm','z_mm','nx','ny','nz','depth_mm','force_N','indenter',',','#','\r\n']
+trajectory_words=['t_s,x_mm,y_mm,z_mm,qw,qx,qy,qz','0.70710678118654757',',','\r\n']
+def put_dict(target, words):
+    d=os.path.join(here,'dict'); os.makedirs(d,exist_ok=True)
+    def quote(w):
+        return '"'+''.join(c if 32<=ord(c)<127 and c not in '"\\' else '\\x%02x'%ord(c) for c in w)+'"'
+    open(os.path.join(d,target+'.dict'),'w').write(''.join(quote(w)+'\n' for w in words+numbers))
+put_dict('measurements', csv_words)
+put_dict('trajectory', trajectory_words)
+put_dict('tissue_model', json_words)
+put_dict('plus_config', xml_words)
+put_dict('nrrd', nrrd_words)
+put_dict('metaimage', meta_words+devices)
+put_dict('volume', nrrd_words+meta_words+devices)
+put_dict('plus_mha', meta_words+plus_words+devices)
+put_dict('plus_seq_nrrd', nrrd_words+plus_words)
+put_dict('plus_sequence', nrrd_words+meta_words+plus_words+devices)
