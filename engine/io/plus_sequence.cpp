@@ -498,8 +498,12 @@ std::string default_reference_frame(const PlusRecording& recording)
 {
     if (recording.frames.empty()) return "Reference";
     const TransformRepository first = frame_repository(recording, 0, {});
-    if (!first.find("Image", "Reference") && (first.find("Image", "Tracker") || (!first.knows("Reference") && first.knows("Tracker"))))
-        return "Tracker";
+    try {
+        if (!first.find("Image", "Reference") && (first.find("Image", "Tracker") || (!first.knows("Reference") && first.knows("Tracker"))))
+            return "Tracker";
+    } catch (const TransformError&) {
+        // a chain through a singular transform it would have to invert: resolve_sweep names it, with the file and frame
+    }
     return "Reference";
 }
 

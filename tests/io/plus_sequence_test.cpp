@@ -518,5 +518,14 @@ TEST(PlusSequence, RefusesATransformFromAFrameToItself)
                      {"ProbeToProbeTransform", "to itself"});
 }
 
+// Issue 13 (fuzzing): a singular transform on the only chain, to be inverted (ReferenceToImage with a
+// zero row), escaped as a TransformError from default_reference_frame; it is refused naming the frame.
+TEST(PlusSequence, RefusesASingularTransformItWouldInvertNamingTheFrame)
+{
+    const std::string singular = "Seq_Frame0000_ReferenceToImageTransform = 0 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
+    expect_mha_error("singular.mha", with_line(good_mha(), "Seq_Frame0000_ImageToReferenceTransform = ", singular),
+                     {"Seq_Frame0000", "ReferenceToImage", "singular"});
+}
+
 }  // namespace
 }  // namespace echosim::io
