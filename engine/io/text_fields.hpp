@@ -125,9 +125,12 @@ bool read_header_line(std::istream& in, std::string& line, const std::filesystem
 }
 
 // Bytes left in `in` after its current position, or max when it cannot tell: what a header's
-// sizes are checked against before anything is allocated for them.
+// sizes are checked against before anything is allocated for them. A stream already at its end (a
+// header whose last line ends the file, without a newline) or failed has none left: tellg() cannot
+// tell there, and "max" would let a header's claim through (issue 13, found by fuzz_volume).
 inline std::uint64_t bytes_left(std::istream& in)
 {
+    if (!in.good()) return 0;
     const auto here = in.tellg();
     if (here == std::streampos(-1)) return std::numeric_limits<std::uint64_t>::max();
     in.seekg(0, std::ios::end);

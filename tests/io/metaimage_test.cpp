@@ -408,5 +408,18 @@ TEST(MetaImage, RefusesWhatIsNotARegularFileAsHeaderOrData)
     std::filesystem::remove(path);
 }
 
+// Issue 13 (fuzzing): a header whose last line (ElementDataFile = LOCAL) ends the file, without a
+// newline, left the stream at its end, where tellg() fails; the bytes left were taken as unknown and
+// the 4 GiB DimSize claimed was allocated (and zeroed) before the read found nothing.
+TEST(MetaImage, RefusesRawDataClaimedByAHeaderThatEndsTheFile)
+{
+    const auto path = temp("ends_at_header.mha");
+    std::string header = with(itk_header, "DimSize = 4 3 2", "DimSize = 2048 2048 1024");
+    header.pop_back();  // no newline after ElementDataFile = LOCAL
+    write_bytes(path, header);
+    expect_error(path, {"ElementDataFile", "truncated data: 0 bytes", "4294967296"});
+    std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace echosim::io
