@@ -248,7 +248,8 @@ std::vector<std::uint8_t> inflate_metaimage_data(const std::filesystem::path& pa
         data = inflate_exactly(in, bytes, packed);
     } catch (const ZlibError& e) {
         const std::string produced = std::to_string(e.produced());
-        if (e.kind() == ZlibError::Kind::too_large) fail_compressed("truncated data or a wrong " + std::string(sizes_field) + ": " + e.what());
+        if (e.kind() == ZlibError::Kind::too_large)
+            fail_compressed("truncated data or a wrong " + std::string(sizes_field) + ": " + e.what());
         if (e.kind() == ZlibError::Kind::ended_early)
             fail_compressed("the compressed data inflate to " + produced + " bytes, " + std::string(sizes_field) + " needs " +
                             std::to_string(bytes));

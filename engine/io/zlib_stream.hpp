@@ -6,9 +6,9 @@
 // 1032 times its own size (zlib's technical notes). The output is then reserved once (at most that
 // ratio times the input, so a header that lies about the size over a tiny payload costs no more than
 // the payload could really hold) and filled as the data comes; the input is read in chunks, so the
-// compressed data is never held whole. It runs on to the end of the stream: the checksum there is the only guard against
-// corrupt data that still inflates. Failures are thrown as ZlibError with what the caller needs to
-// say what went wrong in its own terms (file, field, the size its header gave).
+// compressed data is never held whole. It runs on to the end of the stream: the checksum there is the
+// only guard against corrupt data that still inflates. Failures are thrown as ZlibError with what the
+// caller needs to say what went wrong in its own terms (file, field, the size its header gave).
 #pragma once
 
 #include <cstdint>
