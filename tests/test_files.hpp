@@ -10,6 +10,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace echosim::test {
@@ -51,6 +52,23 @@ void expect_error_naming(const std::filesystem::path& path, std::initializer_lis
         EXPECT_NE(message.find(path.string()), std::string::npos) << message;
         for (const char* word : words) EXPECT_NE(message.find(word), std::string::npos) << "no '" << word << "' in: " << message;
     }
+}
+
+// read(path) must refuse, with an Error naming the path and "not a regular file", each of: a FIFO
+// (reading would block until a writer came), a folder, and /dev/zero (reading would never end; it is
+// only read from, never written, so safe in a test that runs as root).
+template <class Error, class Read>
+void expect_special_files_refused(const std::string& prefix, Read&& read)
+{
+    const auto fifo = temp_path(prefix, "fifo");
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const auto folder = temp_path(prefix, "folder");
+    std::filesystem::create_directories(folder);
+    for (const std::filesystem::path& path : {fifo, folder, std::filesystem::path("/dev/zero")})
+        expect_error_naming<Error>(path, {"not a regular file"}, [&] { read(path); });
+    std::filesystem::remove(fifo);
+    std::filesystem::remove(folder);
 }
 
 }  // namespace echosim::test

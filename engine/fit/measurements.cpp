@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/parse_number.hpp"
+#include "io/text_fields.hpp"
 #include "io/partial_file.hpp"
 
 namespace echosim::fit {
@@ -46,8 +47,7 @@ int MeasurementSet::point_count() const
 
 MeasurementSet read_measurements(const std::filesystem::path& path)
 {
-    std::ifstream in(path);
-    if (!in) throw MeasurementError(path.string() + ": cannot open");
+    std::ifstream in = io::text::open_binary<MeasurementError>(path);  // refuses devices and FIFOs
     MeasurementSet set;
     std::array<int, kColumns.size()> where{};
     std::size_t width = 0;

@@ -248,6 +248,8 @@ std::vector<std::uint8_t> inflate_metaimage_data(const std::filesystem::path& pa
         data = inflate_exactly(in, bytes, packed);
     } catch (const ZlibError& e) {
         const std::string produced = std::to_string(e.produced());
+        if (e.kind() == ZlibError::Kind::too_large)
+            fail_compressed("truncated data or a wrong " + std::string(sizes_field) + ": " + e.what());
         if (e.kind() == ZlibError::Kind::ended_early)
             fail_compressed("the compressed data inflate to " + produced + " bytes, " + std::string(sizes_field) + " needs " +
                             std::to_string(bytes));
@@ -282,6 +284,8 @@ std::vector<std::uint8_t> read_metaimage_data(std::istream& in, const MetaImageH
     std::filesystem::path data_path = header.path();
     if (upper(where.value) != "LOCAL") {
         data_path = data_file_path(header, where);
+        if (text::is_special_file(data_path))
+            header.fail(where.name, "the data file " + data_path.string() + " is " + text::not_regular_file + ": refusing to read it");
         detached.open(data_path, std::ios::binary);
         if (!detached)
             header.fail(where.name, "the data file " + data_path.string() + " cannot be opened: " +

@@ -72,9 +72,11 @@ std::string canonical_field(std::string name)
 std::vector<std::uint8_t> inflate_data(std::istream& in, const NrrdHeader& header, std::uint64_t bytes)
 {
     try {
-        return inflate_exactly(in, bytes).data;  // what the stream holds past the voxels is dropped
+        // what the stream holds past the voxels is dropped
+        return inflate_exactly(in, bytes, text::bytes_left(in)).data;
     } catch (const ZlibError& e) {
         const std::string sizes_say = " bytes, sizes say " + std::to_string(bytes);
+        if (e.kind() == ZlibError::Kind::too_large) header.fail("sizes", std::string("truncated data: ") + e.what());
         if (e.kind() == ZlibError::Kind::ended_early)
             header.fail("sizes", "truncated data: the gzip data holds " + std::to_string(e.produced()) + sizes_say);
         if (e.kind() == ZlibError::Kind::input_ended && e.produced() < bytes)

@@ -22,10 +22,7 @@ class PartialFile {
 public:
     explicit PartialFile(const std::filesystem::path& path) : path_(path), tmp_(path)
     {
-        std::error_code ec;
-        const auto status = std::filesystem::status(path, ec);
-        if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-            fail("not a regular file (a device, a FIFO or a folder): refusing to replace it");
+        if (text::is_special_file(path)) fail(std::string(text::not_regular_file) + ": refusing to replace it");
         tmp_ += ".partial";
         file_ = std::fopen(tmp_.c_str(), "wb");
         if (!file_) fail("cannot open " + tmp_.string() + " for writing: " + std::generic_category().message(errno));

@@ -123,6 +123,7 @@ std::vector<RecordedTransform> recorded_transforms(const std::filesystem::path& 
         const auto frames = split_transform_name(std::string_view(name).substr(0, name.size() - suffix.size()));
         if (!frames) continue;  // not a transform PLUS could name either
         const std::string field = prefix + name;
+        if (frames->first == frames->second) fail_field(path, field, "a transform from a frame to itself");
         RecordedTransform t{frames->first, frames->second, glm::dmat4(1.0), true};
         if (const auto status = fields.find(name + "Status"); status != fields.end())
             t.valid = parse_status(path, field + "Status", status->second);
@@ -497,8 +498,12 @@ std::string default_reference_frame(const PlusRecording& recording)
 {
     if (recording.frames.empty()) return "Reference";
     const TransformRepository first = frame_repository(recording, 0, {});
-    if (!first.find("Image", "Reference") && (first.find("Image", "Tracker") || (!first.knows("Reference") && first.knows("Tracker"))))
-        return "Tracker";
+    try {
+        if (!first.find("Image", "Reference") && (first.find("Image", "Tracker") || (!first.knows("Reference") && first.knows("Tracker"))))
+            return "Tracker";
+    } catch (const TransformError&) {
+        // a chain through a singular transform it would have to invert: resolve_sweep names it, with the file and frame
+    }
     return "Reference";
 }
 

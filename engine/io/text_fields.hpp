@@ -75,9 +75,22 @@ template <class Error>
     throw Error(path.string() + ": " + why);
 }
 
+// True when `path` names something that exists and is not a regular file: a device (/dev/zero, a
+// terminal), a FIFO, a socket, a folder. Readers refuse them: such a "file" may never end, or block.
+inline bool is_special_file(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    return !ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+}
+
+inline constexpr const char* not_regular_file = "not a regular file (a device, a FIFO or a folder)";
+
+// The file, opened for reading; a missing file, or one that is not a regular file, throws Error naming it.
 template <class Error>
 std::ifstream open_binary(const std::filesystem::path& path)
 {
+    if (is_special_file(path)) fail<Error>(path, std::string(not_regular_file) + ": refusing to read it");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail<Error>(path, "cannot open: " + std::generic_category().message(errno));
     return in;
@@ -112,9 +125,12 @@ bool read_header_line(std::istream& in, std::string& line, const std::filesystem
 }
 
 // Bytes left in `in` after its current position, or max when it cannot tell: what a header's
-// sizes are checked against before anything is allocated for them.
+// sizes are checked against before anything is allocated for them. A stream already at its end (a
+// header whose last line ends the file, without a newline) or failed has none left: tellg() cannot
+// tell there, and "max" would let a header's claim through (issue 13, found by fuzz_volume).
 inline std::uint64_t bytes_left(std::istream& in)
 {
+    if (!in.good()) return 0;
     const auto here = in.tellg();
     if (here == std::streampos(-1)) return std::numeric_limits<std::uint64_t>::max();
     in.seekg(0, std::ios::end);

@@ -26,12 +26,16 @@ struct Deflater {
 
 Inflated inflate_exactly(std::istream& in, std::uint64_t bytes, std::uint64_t max_input)
 {
+    if (bytes > max_inflated_bytes(max_input))
+        throw ZlibError(ZlibError::Kind::too_large, 0,
+                        std::to_string(bytes) + " bytes cannot come from " + std::to_string(max_input) +
+                            " compressed bytes: deflate inflates at most " + std::to_string(max_deflate_ratio) + " times");
     Inflater zs;
     if (inflateInit2(&zs.z, 15 + 32) != Z_OK)  // 32: gzip or zlib, from the stream's header
         throw ZlibError(ZlibError::Kind::cannot_start, 0, "zlib could not start");
     Inflated result;
     std::vector<std::uint8_t>& out = result.data;
-    out.reserve(std::size_t(bytes));  // address space only: pages are touched as they are filled
+    out.reserve(std::size_t(bytes));  // at most max_inflated_bytes(max_input), checked above
     std::vector<char> chunk(std::size_t(std::min<std::uint64_t>(zlib_chunk, max_input)));
     std::uint64_t input_left = max_input;
     std::array<Bytef, 4096> beyond;  // inflated bytes past the wanted ones, checked and dropped

@@ -1,11 +1,14 @@
 // The one zlib path of the file formats that carry compressed data after a text header (NRRD's gzip
 // encoding, PLUS/MetaImage CompressedData): a streaming inflate and a deflate.
 //
-// Inflating grows its output as the data comes, so a header that lies about the size costs no more
-// memory than the stream really holds, and reads its input in chunks, so the compressed data is never
-// held whole. It runs on to the end of the stream: the checksum there is the only guard against
-// corrupt data that still inflates. Failures are thrown as ZlibError with what the caller needs to
-// say what went wrong in its own terms (file, field, the size its header gave).
+// Inflating refuses, before anything is allocated, a size that no stream of the input's length can
+// inflate to: deflate's densest code is 2 bits per 258-byte match, so a stream inflates to at most
+// 1032 times its own size (zlib's technical notes). The output is then reserved once (at most that
+// ratio times the input, so a header that lies about the size over a tiny payload costs no more than
+// the payload could really hold) and filled as the data comes; the input is read in chunks, so the
+// compressed data is never held whole. It runs on to the end of the stream: the checksum there is the
+// only guard against corrupt data that still inflates. Failures are thrown as ZlibError with what the
+// caller needs to say what went wrong in its own terms (file, field, the size its header gave).
 #pragma once
 
 #include <cstdint>
@@ -27,6 +30,7 @@ public:
         ended_early,   // the stream ended, checksum and all, before the bytes wanted: produced() says how many
         input_ended,   // the input (or its allowance) ended inside the stream, after produced() bytes
         compressing,   // deflate failed
+        too_large,     // the bytes wanted exceed what the input could inflate to (max_inflated_bytes)
     };
     ZlibError(Kind kind, std::uint64_t produced, const std::string& what)
         : std::runtime_error(what), kind_(kind), produced_(produced)
@@ -45,8 +49,23 @@ struct Inflated {
     std::uint64_t beyond = 0;        // [bytes] the stream held past them, inflated, checked and dropped
 };
 
+// deflate's largest ratio of inflated to compressed bytes (one literal, then matches of 258 bytes at
+// 2 bits each)
+inline constexpr std::uint64_t max_deflate_ratio = 1032;
+
+// [bytes] the most that `compressed` bytes of a zlib or gzip stream can inflate to: the ratio, plus
+// the first literal and a little for the smallest inputs; saturates rather than overflows.
+constexpr std::uint64_t max_inflated_bytes(std::uint64_t compressed)
+{
+    constexpr std::uint64_t slack = 1024;
+    constexpr std::uint64_t most = std::numeric_limits<std::uint64_t>::max();
+    return compressed > (most - slack) / max_deflate_ratio ? most : compressed * max_deflate_ratio + slack;
+}
+
 // Inflates a zlib or gzip stream (told apart by its header) from `in`, reading at most `max_input`
-// bytes of it, into exactly `bytes` bytes. Leaves `in` somewhere past the stream's end.
+// bytes of it (the caller passes the compressed size, or the bytes left in the file), into exactly
+// `bytes` bytes; throws `too_large` before anything when `bytes` > max_inflated_bytes(max_input).
+// Leaves `in` somewhere past the stream's end.
 Inflated inflate_exactly(std::istream& in, std::uint64_t bytes,
                          std::uint64_t max_input = std::numeric_limits<std::uint64_t>::max());
 

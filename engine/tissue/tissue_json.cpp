@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/partial_file.hpp"
+#include "io/text_fields.hpp"
 #include "tissue/physical_ranges.hpp"
 
 namespace echosim::tissue {
@@ -69,6 +70,20 @@ public:
         }
         return out;
     }
+    // An optional field: `fallback` when absent, else as number() checks it.
+    double optional_number(const json& obj, const std::string& field, const std::string& name, double lo, double hi,
+                           double fallback) const
+    {
+        return obj.contains(field) ? number(obj, field, name, lo, hi) : fallback;
+    }
+    // An optional string field: empty when absent.
+    std::string optional_text(const json& obj, const std::string& field, const std::string& name) const
+    {
+        if (!obj.contains(field)) return {};
+        const json& v = obj.at(field);
+        if (!v.is_string()) fail(name, "not a string");
+        return v.get<std::string>();
+    }
     const json& root() const { return root_; }
 
 private:
@@ -109,16 +124,16 @@ void write_tissue_model(const std::filesystem::path& path, const TissueModel& m)
 
 TissueModel read_tissue_model(const std::filesystem::path& path)
 {
-    std::ifstream in(path);
-    if (!in) throw ModelFileError(path.string() + ": cannot open");
+    std::ifstream in = io::text::open_binary<ModelFileError>(path);  // refuses devices and FIFOs
     json j;
     try {
         j = json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond double's range
         throw ModelFileError(path.string() + ": not valid JSON: " + e.what());
     }
     Reader r(path, j);
-    if (!j.is_object() || j.value("format", "") != kFormat) r.fail("format", std::string("expected \"") + kFormat + "\"");
+    if (!j.is_object() || r.optional_text(j, "format", "format") != kFormat)
+        r.fail("format", std::string("expected \"") + kFormat + "\"");
     if (r.number(j, "version", "version", 1, 1e9) != kVersion) r.fail("version", "unsupported version");
 
     TissueModel m;
@@ -146,15 +161,18 @@ TissueModel read_tissue_model(const std::filesystem::path& path)
         r.fail(d.field, d.field == "mu_Ns_per_mm" && m.refine > 1 ? d.why + ", times refine^2 = " + std::to_string(int(scale)) : d.why);
 
     if (j.contains("fit") && j["fit"].is_object()) {
+        // statistics, not physics: each optional, but of the right type and range (json's value() would
+        // throw its own type_error for a string there, and cast 1e300 to int)
         const json& f = j["fit"];
-        m.fit.method = f.value("method", "");
-        m.fit.seconds = f.value("seconds", 0.0);
-        m.fit.samples = f.value("samples", 0);
-        m.fit.mae_N = f.value("mae_N", 0.0);
-        m.fit.sd_N = f.value("sd_N", 0.0);
-        m.fit.rel_error = f.value("rel_error", 0.0);
-        m.fit.mae_indenter_N = f.value("mae_indenter_N", 0.0);
-        m.fit.mae_probe_N = f.value("mae_probe_N", 0.0);
+        constexpr double most = 1e9;
+        m.fit.method = r.optional_text(f, "method", "fit.method");
+        m.fit.seconds = r.optional_number(f, "seconds", "fit.seconds", 0, most, 0);
+        m.fit.samples = int(r.optional_number(f, "samples", "fit.samples", 0, most, 0));
+        m.fit.mae_N = r.optional_number(f, "mae_N", "fit.mae_N", 0, most, 0);
+        m.fit.sd_N = r.optional_number(f, "sd_N", "fit.sd_N", 0, most, 0);
+        m.fit.rel_error = r.optional_number(f, "rel_error", "fit.rel_error", 0, most, 0);
+        m.fit.mae_indenter_N = r.optional_number(f, "mae_indenter_N", "fit.mae_indenter_N", 0, most, 0);
+        m.fit.mae_probe_N = r.optional_number(f, "mae_probe_N", "fit.mae_probe_N", 0, most, 0);
     }
 
     const std::size_t n = std::size_t(m.rows) * std::size_t(m.cols);

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "test_files.hpp"
+
 namespace echosim::fit {
 namespace {
 
@@ -88,6 +90,12 @@ TEST(Measurements, MalformedFilesNameFileLineAndField)
     EXPECT_NE(error_for("").find("empty file"), std::string::npos);
     EXPECT_NE(error_for(kHeader).find("no samples"), std::string::npos);
     EXPECT_EQ(error_for(std::string("# comment\n") + kHeader + kGoodRow), "no error");
+}
+
+// Issue 13: /dev/zero given as the CSV made the reader take gigabytes looking for the first line's end.
+TEST(Measurements, RefusesWhatIsNotARegularFile)
+{
+    test::expect_special_files_refused<MeasurementError>("meas", [](const std::filesystem::path& p) { read_measurements(p); });
 }
 
 }  // namespace

@@ -380,5 +380,46 @@ TEST(VolumeFile, ReadsTheSameVolumeFromNrrdAndMetaImage)
     for (const auto& p : {nrrd, renamed}) std::filesystem::remove(p);
 }
 
+// A DimSize within the budget but beyond what the compressed data could inflate to (issue 13: 4 GiB
+// claimed over a few bytes of zlib) is refused before the memory is taken.
+TEST(MetaImage, RefusesCompressedDataClaimingMoreThanItCouldHold)
+{
+    const auto path = temp("claims_huge.mha");
+    const std::string payload = zlib(std::string(1000, '\0'));
+    const std::string header = with(with(itk_header, "CompressedData = False", "CompressedData = True\nCompressedDataSize = " +
+                                                                                   std::to_string(payload.size())),
+                                    "DimSize = 4 3 2", "DimSize = 2048 2048 1024");
+    write_bytes(path, header + payload);
+    expect_error(path, {"CompressedData", "DimSize", "4294967296 bytes cannot come from", "1032"});
+    // without CompressedDataSize, the rest of the file is the bound
+    write_bytes(path, with(header, "CompressedDataSize = " + std::to_string(payload.size()) + "\n", "") + payload);
+    expect_error(path, {"CompressedData", "4294967296 bytes cannot come from"});
+    std::filesystem::remove(path);
+}
+
+TEST(MetaImage, RefusesWhatIsNotARegularFileAsHeaderOrData)
+{
+    test::expect_special_files_refused<MetaImageError>("metaimage_test", [](const std::filesystem::path& p) { read_metaimage_volume(p); });
+    test::expect_special_files_refused<VolumeFileError>("volume_file_test", [](const std::filesystem::path& p) { read_volume(p); });
+    // a header naming a device as its data file: refused by name, never read
+    const auto path = temp("device_data.mhd");
+    write_bytes(path, with(itk_header, "ElementDataFile = LOCAL", "ElementDataFile = /dev/zero"));
+    expect_error(path, {"ElementDataFile", "/dev/zero", "not a regular file"});
+    std::filesystem::remove(path);
+}
+
+// Issue 13 (fuzzing): a header whose last line (ElementDataFile = LOCAL) ends the file, without a
+// newline, left the stream at its end, where tellg() fails; the bytes left were taken as unknown and
+// the 4 GiB DimSize claimed was allocated (and zeroed) before the read found nothing.
+TEST(MetaImage, RefusesRawDataClaimedByAHeaderThatEndsTheFile)
+{
+    const auto path = temp("ends_at_header.mha");
+    std::string header = with(itk_header, "DimSize = 4 3 2", "DimSize = 2048 2048 1024");
+    header.pop_back();  // no newline after ElementDataFile = LOCAL
+    write_bytes(path, header);
+    expect_error(path, {"ElementDataFile", "truncated data: 0 bytes", "4294967296"});
+    std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace echosim::io

@@ -384,5 +384,22 @@ TEST(Nrrd, FailedWriteLeavesNoFile)
     EXPECT_FALSE(std::filesystem::exists(nowhere));
 }
 
+// Sizes within the budget but beyond what the gzip data could inflate to (issue 13: 4 GiB claimed
+// over 1 KB of zeros) are refused before the memory is taken.
+TEST(Nrrd, RefusesGzipDataClaimingMoreThanItCouldHold)
+{
+    const auto path = temp("claims_huge.nrrd");
+    Volume small = make_volume({10, 10, 10}, VoxelType::uint8);
+    write_nrrd(path, small, true);
+    write_bytes(path, with(read_bytes(path), "sizes: 10 10 10", "sizes: 2048 2048 1024"));
+    expect_nrrd_error(path, {"'sizes'", "4294967296 bytes cannot come from", "1032"});
+    std::filesystem::remove(path);
+}
+
+TEST(Nrrd, RefusesWhatIsNotARegularFile)
+{
+    test::expect_special_files_refused<NrrdError>("nrrd_test", [](const std::filesystem::path& p) { read_nrrd(p); });
+}
+
 }  // namespace
 }  // namespace echosim::io

@@ -490,5 +490,42 @@ TEST(PlusSequence, ReadsTheFrameAxisWhereverItStands)
     std::filesystem::remove(path);
 }
 
+// Issue 13's finding: a compressed sweep whose DimSize claims gigabytes (within the budget) over a few
+// bytes of payload made the reader reserve them all before finding the stream short. Now refused first.
+TEST(PlusSequence, RefusesACompressedSweepClaimingMoreThanItCouldHold)
+{
+    const auto path = temp("claims_huge.mha");
+    write_plus_mha(path, make_sweep(4, 3, 3), true);
+    write_bytes(path, with(read_bytes(path), "DimSize = 4 3 3", "DimSize = 65536 16384 3"));
+    expect_plus_error(path, {"CompressedData", "DimSize", "3221225472 bytes cannot come from", "1032"});
+    std::filesystem::remove(path);
+}
+
+TEST(PlusSequence, RefusesWhatIsNotARegularFile)
+{
+    test::expect_special_files_refused<PlusSequenceError>("plus_test", [](const std::filesystem::path& p) { read_plus_recording(p); });
+}
+
+// Issue 13 (fuzzing): a transform from a frame to itself (ImageToImageTransform) escaped as a
+// TransformError from default_reference_frame; the reader refuses it by name, in a frame or file-wide.
+TEST(PlusSequence, RefusesATransformFromAFrameToItself)
+{
+    const std::string identity = " = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n";
+    const std::string f1 = "Seq_Frame0001_ImageToReferenceTransform";
+    expect_mha_error("itself.mha", with(good_mha(), f1, "Seq_Frame0001_ImageToImageTransform" + identity + f1),
+                     {"Seq_Frame0001_ImageToImageTransform", "to itself"});
+    expect_mha_error("itself_file.mha", with(good_mha(), "ElementType", "ProbeToProbeTransform" + identity + "ElementType"),
+                     {"ProbeToProbeTransform", "to itself"});
+}
+
+// Issue 13 (fuzzing): a singular transform on the only chain, to be inverted (ReferenceToImage with a
+// zero row), escaped as a TransformError from default_reference_frame; it is refused naming the frame.
+TEST(PlusSequence, RefusesASingularTransformItWouldInvertNamingTheFrame)
+{
+    const std::string singular = "Seq_Frame0000_ReferenceToImageTransform = 0 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
+    expect_mha_error("singular.mha", with_line(good_mha(), "Seq_Frame0000_ImageToReferenceTransform = ", singular),
+                     {"Seq_Frame0000", "ReferenceToImage", "singular"});
+}
+
 }  // namespace
 }  // namespace echosim::io

@@ -111,10 +111,11 @@ TEST(ZlibStream, ReadsNoMoreThanItsAllowance)
     const ZlibError e = inflate_error(packed, data.size(), packed.size() - 2);
     EXPECT_EQ(e.kind(), ZlibError::Kind::input_ended);
     EXPECT_EQ(e.produced(), data.size());
-    // the bytes past the allowance are never read
+    // the bytes past the allowance are never read (100 bytes might inflate to the 100000 wanted)
     std::istringstream cut(packed);
-    EXPECT_THROW(inflate_exactly(cut, data.size(), 10), ZlibError);
-    EXPECT_EQ(cut.tellg(), std::streampos(10));
+    EXPECT_EQ(inflate_error(packed, data.size(), 100).kind(), ZlibError::Kind::input_ended);
+    EXPECT_THROW(inflate_exactly(cut, data.size(), 100), ZlibError);
+    EXPECT_EQ(cut.tellg(), std::streampos(100));
 }
 
 TEST(ZlibStream, TellsTruncatedShortAndCorruptStreamsApart)
@@ -143,6 +144,28 @@ TEST(ZlibStream, TellsTruncatedShortAndCorruptStreamsApart)
     e = inflate_error("", data.size());
     EXPECT_EQ(e.kind(), ZlibError::Kind::input_ended);
     EXPECT_EQ(e.produced(), 0u);
+}
+
+// A size no input of that length could inflate to is refused before anything is read or allocated
+// (issue 13: a header claiming gigabytes over a few bytes of payload); the bound holds for the
+// densest stream zlib makes, and does not overflow.
+TEST(ZlibStream, RefusesASizeBeyondDeflatesMaximumRatio)
+{
+    const std::vector<std::uint8_t> zeros(std::size_t(8) << 20, 0);
+    const std::string packed = compressed_by_zlib(zeros);  // level 6; level 9 is no denser for zeros
+    EXPECT_LE(zeros.size(), max_inflated_bytes(packed.size()));
+    EXPECT_GT(zeros.size(), 1000 * packed.size());  // close to the 1032:1 limit: the bound is not loose
+    std::istringstream in(packed);
+    EXPECT_EQ(inflate_exactly(in, zeros.size(), packed.size()).data, zeros);
+
+    const ZlibError e = inflate_error(packed, std::uint64_t(4) << 30, packed.size());
+    EXPECT_EQ(e.kind(), ZlibError::Kind::too_large);
+    EXPECT_EQ(e.produced(), 0u);
+    EXPECT_NE(std::string(e.what()).find("1032"), std::string::npos) << e.what();
+    std::istringstream untouched(packed);
+    EXPECT_THROW(inflate_exactly(untouched, std::uint64_t(4) << 30, packed.size()), ZlibError);
+    EXPECT_EQ(untouched.tellg(), std::streampos(0));
+    EXPECT_EQ(max_inflated_bytes(UINT64_MAX / 2), UINT64_MAX);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "tissue/nonlinear_spring.hpp"
 #include "tissue/physical_ranges.hpp"
 #include "tissue/tissue_json.hpp"
+#include "test_files.hpp"
 
 namespace echosim::tissue {
 namespace {
@@ -141,6 +142,13 @@ TEST(TissueJson, BadFilesNameTheField)
     EXPECT_NE(message(replaced("\"refine\": 1", "\"refine\": 2")).find("'grid'"), std::string::npos);
     EXPECT_NE(message(text.substr(0, text.size() / 2)).find("not valid JSON"), std::string::npos);
     EXPECT_NE(message(replaced("\"format\": \"echosim-tissue-model\"", "\"format\": \"other\"")).find("'format'"), std::string::npos);
+    // issue 13 (fuzzing): json's own exceptions escaped for a number beyond double's range and for a
+    // wrong type where value() was used, and 1e300 was cast to int
+    EXPECT_NE(message(replaced("\"lambda_N_per_mm\": ", "\"lambda_N_per_mm\": 1e999, \"x\": ")).find("not valid JSON"), std::string::npos);
+    EXPECT_NE(message(replaced("\"format\": \"echosim-tissue-model\"", "\"format\": 3")).find("'format'"), std::string::npos);
+    EXPECT_NE(message(replaced("\"method\": ", "\"method\": 7, \"x\": ")).find("'fit.method': not a string"),
+              std::string::npos);
+    EXPECT_NE(message(replaced("\"samples\": ", "\"samples\": 1e300, \"x\": ")).find("'fit.samples'"), std::string::npos);
     std::filesystem::remove(good);
 }
 
@@ -211,6 +219,11 @@ TEST(PhysicalRanges, TheShippedThighLiesWellInside)
     for (double& b : tenfold.b) b *= 10;
     EXPECT_FALSE(sample_parameters_defect(tenfold));
     EXPECT_EQ(range_defect(kSurfaceDamping, std::nan("")), "nan N s/mm outside the physical range [0, 0.1] N s/mm (surface spring damping mu)");
+}
+
+TEST(TissueJson, RefusesWhatIsNotARegularFile)
+{
+    test::expect_special_files_refused<ModelFileError>("tissue", [](const std::filesystem::path& p) { read_tissue_model(p); });
 }
 
 }  // namespace
