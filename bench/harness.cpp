@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
+#include "bench/goals.hpp"
 #include "bench/suites.hpp"
 
 namespace echosim::bench {
@@ -138,6 +139,10 @@ int run_bench(const BenchArgs& args)
         std::fprintf(stderr, "echosim bench: no benchmark row matches --filter '%s'\n", args.filter.c_str());
         return kExitBadInput;
     }
+    // the goals of DESIGN.md §5 that these suites measure, one table
+    const std::vector<GoalLine> goals = evaluate_goals(design_goals(), report);
+    if (!goals.empty()) std::printf("\nagainst the goals (DESIGN.md §5):\n%s", goal_table(goals).c_str());
+    for (nlohmann::json& suite : report) suite["goals"] = goal_lines_json(goals, suite["bench"].get<std::string>());
     if (!args.json.empty()) {
         std::ofstream out(args.json);
         if (!out) {

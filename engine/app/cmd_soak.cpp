@@ -17,7 +17,8 @@ int run_soak(const SoakArgs& args)
     o.height = args.height;
     o.deadlines = parse_deadline_check(args.deadlines);  // checked by the parser
     o.progress = [](const SoakProgress& p) {
-        std::printf("echosim soak: %5.0f / %.0f s, %lld frames, resident %.1f MiB\n", p.t_s, p.seconds, p.frames, p.rss_mib);
+        std::printf("echosim soak: %5.0f / %.0f s, %lld frames, resident %.1f MiB, %lld missed haptic deadlines\n", p.t_s, p.seconds, p.frames,
+                    p.rss_mib, p.haptic_missed);
         std::fflush(stdout);
     };
     std::printf("echosim soak: %.0f s of a scripted session (warm-up %.0f s), making its volume...\n", o.seconds, soak_warmup_s(o.seconds));

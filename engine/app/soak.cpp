@@ -73,15 +73,15 @@ double resident_mib()
     return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
-MemoryVerdict judge_memory(std::span<const MemorySample> samples, double warmup_s)
+MemoryVerdict judge_memory(std::span<const SoakSample> samples, double warmup_s)
 {
     MemoryVerdict v;
     if (samples.empty()) return v;
-    for (const MemorySample& s : samples) v.max_mib = std::max(v.max_mib, s.rss_mib);
+    for (const SoakSample& s : samples) v.max_mib = std::max(v.max_mib, s.rss_mib);
     // from the first sample at or after the warm-up on (the last one if the run was shorter)
     std::size_t first = 0;
     while (first + 1 < samples.size() && samples[first].t_s < warmup_s) ++first;
-    const std::span<const MemorySample> after = samples.subspan(first);
+    const std::span<const SoakSample> after = samples.subspan(first);
     v.samples = int(after.size());
     v.start_mib = after.front().rss_mib;
     v.end_mib = after.back().rss_mib;
@@ -89,11 +89,11 @@ MemoryVerdict judge_memory(std::span<const MemorySample> samples, double warmup_
     if (after.size() < 2) return v;
     // least squares: slope = cov(t, rss) / var(t)
     double mt = 0, mr = 0;
-    for (const MemorySample& s : after) mt += s.t_s, mr += s.rss_mib;
+    for (const SoakSample& s : after) mt += s.t_s, mr += s.rss_mib;
     mt /= double(after.size());
     mr /= double(after.size());
     double ctr = 0, ctt = 0;
-    for (const MemorySample& s : after) {
+    for (const SoakSample& s : after) {
         ctr += (s.t_s - mt) * (s.rss_mib - mr);
         ctt += (s.t_s - mt) * (s.t_s - mt);
     }
@@ -144,8 +144,9 @@ SoakResult run_soak_session(const SoakOptions& o)
         gpu::CommandPool commands(ctx);  // this thread's
         gpu::OffscreenPresenter presenter(commands, {o.width, o.height});
         SessionFrame frame(ctx, commands, presenter.format(), scene, volumes);
+        haptics::HapticLoop& loop = *scene.session.haptic_loop();
         io::RgbaImage image;  // every frame read back into it (its pixels allocated once)
-        r.memory.reserve(std::size_t(o.seconds) + 2);  // no growth of our own during the run
+        r.samples.reserve(std::size_t(o.seconds) + 2);  // no growth of our own during the run
 
         const auto start = std::chrono::steady_clock::now();
         auto last = start;
@@ -155,10 +156,10 @@ SoakResult run_soak_session(const SoakOptions& o)
             const auto now = std::chrono::steady_clock::now();
             const double t = std::chrono::duration<double>(now - start).count();
             if (t >= next_sample || t >= o.seconds) {
-                r.memory.push_back({t, resident_mib()});
+                r.samples.push_back({t, resident_mib(), r.frames, loop.stats().missed_deadlines});
                 next_sample = std::floor(t) + 1.0;
                 if (o.progress && (t >= next_progress || t >= o.seconds)) {
-                    o.progress({t, o.seconds, r.frames, r.memory.back().rss_mib});
+                    o.progress({t, o.seconds, r.frames, r.samples.back().rss_mib, r.samples.back().haptic_missed});
                     next_progress += progress_every;
                 }
             }
@@ -176,7 +177,6 @@ SoakResult run_soak_session(const SoakOptions& o)
         const physics::RunnerStats ps = scene.session.physics_stats();
         r.physics_steps = ps.steps;
         r.physics_late_steps = ps.overruns;
-        haptics::HapticLoop& loop = *scene.session.haptic_loop();
         const haptics::PeriodStats h = loop.stats();
         r.haptic_ticks = loop.ticks();
         r.haptic_p50_ms = h.error_quantile_ms(0.5);
@@ -186,7 +186,7 @@ SoakResult run_soak_session(const SoakOptions& o)
     }
     // read after the device is gone: leaks are reported while it is destroyed
     r.validation_messages = messages->load();
-    r.rss = judge_memory(r.memory, r.warmup_s);
+    r.rss = judge_memory(r.samples, r.warmup_s);
     r.bounds = judge_soak(r, o.deadlines);
     return r;
 }
@@ -197,7 +197,8 @@ std::string soak_json(const SoakResult& r)
     for (const SoakBound& b : r.bounds)
         bounds.push_back({{"name", b.name}, {"value", b.value}, {"limit", b.limit}, {"unit", b.unit}, {"held", b.held}, {"enforced", b.enforced}});
     nlohmann::json samples = nlohmann::json::array();
-    for (const MemorySample& s : r.memory) samples.push_back({std::round(s.t_s * 1000.0) / 1000.0, std::round(s.rss_mib * 1000.0) / 1000.0});
+    for (const SoakSample& s : r.samples)
+        samples.push_back({std::round(s.t_s * 1000.0) / 1000.0, std::round(s.rss_mib * 1000.0) / 1000.0, s.frames, s.haptic_missed});
     const nlohmann::json j = {
         {"command", "soak"},
         {"pass", r.passed()},
@@ -223,7 +224,8 @@ std::string soak_json(const SoakResult& r)
         {"rss_growth_mib", r.rss.growth_mib},
         {"rss_trend_mib", r.rss.trend_mib},
         {"rss_slope_mib_per_min", r.rss.slope_mib_per_min},
-        {"rss_samples", samples},  // [t_s, MiB], one a second
+        {"samples_columns", {"t_s", "rss_mib", "frames", "haptic_missed_deadlines"}},
+        {"samples", samples},  // one a second; frames and missed deadlines so far
         {"deadlines", to_string(r.deadlines)},
         {"bounds", bounds},
     };

@@ -47,9 +47,12 @@ const char* to_string(DeadlineCheck check);
 
 double soak_warmup_s(double seconds);
 
-struct MemorySample {
+// Taken once a second.
+struct SoakSample {
     double t_s = 0;      // since the run began
     double rss_mib = 0;  // resident set [MiB]
+    long long frames = 0;         // drawn so far
+    long long haptic_missed = 0;  // the haptic loop's missed deadlines so far (when they happened)
 };
 
 // Resident memory of this process now [MiB] (/proc/self/statm); 0 where it cannot be read.
@@ -64,7 +67,7 @@ struct MemoryVerdict {
     double slope_mib_per_min = 0;
     int samples = 0;       // from the start sample on
 };
-MemoryVerdict judge_memory(std::span<const MemorySample> samples, double warmup_s);
+MemoryVerdict judge_memory(std::span<const SoakSample> samples, double warmup_s);
 
 struct SoakBound {
     std::string name;  // rss_growth, rss_trend, validation_messages, haptic_period_p99, haptic_missed_deadlines
@@ -85,7 +88,7 @@ struct SoakResult {
     double haptic_p50_ms = 0, haptic_p99_ms = 0, haptic_max_ms = 0;
     long long haptic_missed = 0;
     std::uint32_t validation_messages = 0;  // counted until the device was destroyed (leaks included)
-    std::vector<MemorySample> memory;
+    std::vector<SoakSample> samples;
     MemoryVerdict rss;
     DeadlineCheck deadlines = DeadlineCheck::strict;
     std::vector<SoakBound> bounds;
@@ -100,6 +103,7 @@ struct SoakProgress {
     double t_s = 0, seconds = 0;
     long long frames = 0;
     double rss_mib = 0;
+    long long haptic_missed = 0;
 };
 
 struct SoakOptions {

@@ -12,9 +12,9 @@ namespace {
 
 // one sample a second for `seconds`, from `base` MiB, rising `per_s` MiB a second, with a
 // sawtooth of `wiggle` MiB (an allocator that grows and trims)
-std::vector<MemorySample> samples(int seconds, double base, double per_s, double wiggle = 0)
+std::vector<SoakSample> samples(int seconds, double base, double per_s, double wiggle = 0)
 {
-    std::vector<MemorySample> out;
+    std::vector<SoakSample> out;
     for (int i = 0; i <= seconds; ++i) out.push_back({double(i), base + per_s * i + (i % 2 ? wiggle : 0.0)});
     return out;
 }
@@ -22,8 +22,8 @@ std::vector<MemorySample> samples(int seconds, double base, double per_s, double
 SoakResult quiet_run()
 {
     SoakResult r;
-    r.memory = samples(120, 180, 0, 0.5);
-    r.rss = judge_memory(r.memory, soak_warmup_s(120));
+    r.samples = samples(120, 180, 0, 0.5);
+    r.rss = judge_memory(r.samples, soak_warmup_s(120));
     r.haptic_p99_ms = 0.02;
     return r;
 }
@@ -45,8 +45,8 @@ TEST(Soak, WarmUpIsAQuarterOfTheRunAtMostThirtySeconds)
 TEST(Soak, FlatMemoryHoldsAndTheWarmUpIsLeftOut)
 {
     // 40 MiB taken in the warm-up (pipelines, pools), then flat with a 0.5 MiB sawtooth
-    std::vector<MemorySample> s = samples(120, 200, 0, 0.5);
-    for (MemorySample& m : s)
+    std::vector<SoakSample> s = samples(120, 200, 0, 0.5);
+    for (SoakSample& m : s)
         if (m.t_s < 10) m.rss_mib = 160 + 4 * m.t_s;
     const MemoryVerdict v = judge_memory(s, 30);
     EXPECT_DOUBLE_EQ(v.start_mib, 200);  // the sample at 30 s
@@ -61,12 +61,12 @@ TEST(Soak, ASteadyLeakFailsTheTrendEvenWhenTheEndSamplesHideIt)
 {
     // 6 MiB over the 90 s after the warm-up, but the start sample caught a 3 MiB spike and the
     // end sample a 3 MiB trim: end - start says 0
-    std::vector<MemorySample> s = samples(120, 200, 6.0 / 90.0);
+    std::vector<SoakSample> s = samples(120, 200, 6.0 / 90.0);
     s[30].rss_mib += 3;
     s[120].rss_mib -= 3;
     SoakResult r;
-    r.memory = s;
-    r.rss = judge_memory(r.memory, 30);
+    r.samples = s;
+    r.rss = judge_memory(r.samples, 30);
     EXPECT_NEAR(r.rss.growth_mib, 0, 1e-9);
     EXPECT_NEAR(r.rss.trend_mib, 6, 0.5);
     EXPECT_NEAR(r.rss.slope_mib_per_min, 4, 0.3);
@@ -78,9 +78,9 @@ TEST(Soak, ASteadyLeakFailsTheTrendEvenWhenTheEndSamplesHideIt)
 TEST(Soak, GrowthOverTheBoundFails)
 {
     SoakResult r;
-    r.memory = samples(60, 200, 0);
-    r.memory.back().rss_mib += kSoakGrowthBoundMib + 1;
-    r.rss = judge_memory(r.memory, 15);
+    r.samples = samples(60, 200, 0);
+    r.samples.back().rss_mib += kSoakGrowthBoundMib + 1;
+    r.rss = judge_memory(r.samples, 15);
     r.bounds = judge_soak(r, DeadlineCheck::report);
     EXPECT_FALSE(find(r.bounds, "rss_growth").held);
     EXPECT_FALSE(r.passed());
