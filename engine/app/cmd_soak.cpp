@@ -21,7 +21,7 @@ int run_soak(const SoakArgs& args)
                     p.rss_mib, p.haptic_missed);
         std::fflush(stdout);
     };
-    std::printf("echosim soak: %.0f s of a scripted session (warm-up %.0f s), making its volume...\n", o.seconds, soak_warmup_s(o.seconds));
+    std::printf("echosim soak: %.0f s of a scripted session (warm-up %.1f s), making its volume...\n", o.seconds, soak_warmup_s(o.seconds));
     std::fflush(stdout);
     const SoakResult r = run_soak_session(o);
 

@@ -75,6 +75,8 @@ SlideTrajectory make_slide_trajectory(const scene::LegModel& leg, const SlideScr
     return out;
 }
 
+double round_trip_s(const SlideScript& script) { return 2.0 * script_end_s(script); }
+
 device::Trajectory make_round_trip_trajectory(const scene::LegModel& leg, const SlideScript& sc)
 {
     std::vector<device::TrajectoryRow> rows;

@@ -59,7 +59,7 @@ const char* to_string(DeadlineCheck check)
     return "?";
 }
 
-double soak_warmup_s(double seconds) { return std::min(kSoakWarmupMaxS, kSoakWarmupFraction * seconds); }
+double soak_warmup_s(double seconds) { return std::min(kSoakWarmupMaxS, std::max(round_trip_s(), kSoakWarmupFraction * seconds)); }
 
 double resident_mib()
 {

@@ -23,10 +23,12 @@
 
 namespace echosim::app {
 
-// The warm-up before the start figure: a quarter of the run, at most 30 s (pipelines compiled,
-// the driver's and the allocator's pools grown to their working size).
+// The warm-up before the start figure: the script's first round (7.2 s: every state the probe
+// goes through, lifted, pressing, sliding each way, drawn at least once, so every pipeline and
+// buffer has been made) or a quarter of the run, whichever is longer, at most 30 s.
 inline constexpr double kSoakWarmupFraction = 0.25;
 inline constexpr double kSoakWarmupMaxS = 30.0;
+inline constexpr double kSoakMinSeconds = 10.0;  // a run has samples after its warm-up
 // Resident memory at the end minus at the end of the warm-up [MiB], at most.
 inline constexpr double kSoakGrowthBoundMib = 4.0;
 // The rise of the least-squares line through the samples after the warm-up, over their span [MiB],

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "app/haptics_demo.hpp"
+
 #include <gtest/gtest.h>
 
 namespace echosim::app {
@@ -35,9 +37,11 @@ const SoakBound& find(const std::vector<SoakBound>& bounds, const std::string& n
     throw std::logic_error("no bound " + name);
 }
 
-TEST(Soak, WarmUpIsAQuarterOfTheRunAtMostThirtySeconds)
+TEST(Soak, WarmUpIsTheScriptsFirstRoundOrAQuarterOfTheRunAtMostThirtySeconds)
 {
-    EXPECT_DOUBLE_EQ(soak_warmup_s(8), 2);
+    EXPECT_DOUBLE_EQ(round_trip_s(), 7.2);
+    EXPECT_DOUBLE_EQ(soak_warmup_s(12), 7.2);
+    EXPECT_DOUBLE_EQ(soak_warmup_s(40), 10);
     EXPECT_DOUBLE_EQ(soak_warmup_s(120), 30);
     EXPECT_DOUBLE_EQ(soak_warmup_s(600), 30);
 }
