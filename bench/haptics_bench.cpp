@@ -1,13 +1,13 @@
 // Suite "haptics": the 1 kHz haptic loop's timing in real time (DESIGN.md §5), while the physics
 // (2,500 nodes, its own thread, 1 kHz) and headless rendering (lavapipe, frames back to back in the
 // benchmark's thread) load the same machine. The loop is driven by the scripted slide of the Fig. 8
-// demo, played again and again, so it renders real contact forces all along. Rows: the loop's rate,
+// demo, there and back, looped, so it renders real contact forces all along. Rows: the loop's rate,
 // its period error against 1 ms (p50, p99, max), the deadlines it missed (woke after the next tick
 // was due), and the cost of one force computation (the local model's force law) on its own.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <cmath>
+#include <algorithm>
 
 #include "app/default_scene.hpp"
 #include "app/haptics_demo.hpp"
@@ -19,27 +19,14 @@
 namespace echosim::bench {
 namespace {
 
-// the slide script back and forth, `repeats` times
-device::Trajectory looping_slide(const scene::LegModel& leg, int repeats)
-{
-    const device::Trajectory one = app::make_slide_trajectory(leg).trajectory;
-    std::vector<device::TrajectoryRow> rows;
-    const double period = one.end_s() + 0.2;
-    for (int k = 0; k < repeats; ++k)
-        for (device::TrajectoryRow r : one.rows()) {
-            r.t_s += k * period;
-            rows.push_back(r);
-        }
-    return device::Trajectory::parse(device::format_trajectory(rows), "the looping slide");
-}
-
 void haptic_loop_timing(benchmark::State& state, const gpu::ContextOptions& gpu, double seconds)
 {
     for (auto _ : state) {
         const scene::LegModel leg;
         session::SessionOptions o;
         o.clock = session::Clock::real_time;
-        o.device = std::make_shared<device::ScriptedDevice>(looping_slide(leg, int(std::ceil(seconds / 3.8)) + 1), "the looping slide");
+        o.device = std::make_shared<device::ScriptedDevice>(app::make_round_trip_trajectory(leg), "the slide script, looped",
+                                                            device::ScriptedDevice::Playback::loop);
         app::DefaultScene scene(o);
         haptics::HapticLoop& loop = *scene.session.haptic_loop();
         if (!scene.session.haptics_note().empty()) state.SetLabel(scene.session.haptics_note());

@@ -15,8 +15,9 @@
 
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
-#include "io/partial_file.hpp"
+#include "bench/goals.hpp"
 #include "bench/suites.hpp"
+#include "io/partial_file.hpp"
 
 namespace echosim::bench {
 
@@ -140,6 +141,10 @@ int run_bench(const BenchArgs& args)
         std::fprintf(stderr, "echosim bench: no benchmark row matches --filter '%s'\n", args.filter.c_str());
         return kExitBadInput;
     }
+    // the goals of DESIGN.md §5 that these suites measure, one table
+    const std::vector<GoalLine> goals = evaluate_goals(design_goals(), report);
+    if (!goals.empty()) std::printf("\nagainst the goals (DESIGN.md §5):\n%s", goal_table(goals).c_str());
+    for (nlohmann::json& suite : report) suite["goals"] = goal_lines_json(goals, suite["bench"].get<std::string>());
     if (!args.json.empty()) {
         // one suite: its object as DESIGN.md shows it; several: an array of them
         io::write_file<std::runtime_error>(args.json, (report.size() == 1 ? report[0] : report).dump(2) + "\n");

@@ -1,7 +1,9 @@
 // The benchmark harness behind `echosim bench`: Google Benchmark measures (warm-up, iteration count,
 // real time), and this harness turns its runs into DESIGN.md's table and JSON
 // ({"bench": NAME, "machine": {...}, "results": [...]}). Each suite registers its benchmarks and
-// reports its figures as Google Benchmark counters, which become the JSON row's fields.
+// reports its figures as Google Benchmark counters, which become the JSON row's fields. After every
+// suite ran, the goals those suites measure (bench/goals.hpp) make one table, and each suite's JSON
+// object gets its lines ("goals").
 #pragma once
 
 #include <functional>

@@ -13,8 +13,8 @@
 #include "app/default_scene.hpp"
 #include "app/exercise_script.hpp"
 #include "app/gpu_args.hpp"
-#include "app/echo_image_pass.hpp"
 #include "app/live_link.hpp"
+#include "app/session_frame.hpp"
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
 #include "device/mouse_keyboard_device.hpp"
@@ -24,8 +24,6 @@
 #include "core/parse_number.hpp"
 #include "gpu/window.hpp"
 #include "igtl/server.hpp"
-#include "render/image_panel_pass.hpp"
-#include "render/scene_pass.hpp"
 
 namespace echosim::app {
 namespace {
@@ -37,16 +35,6 @@ void apply_to_window(const RunInput& in, gpu::Window& window)
     if (in.restore) glfwRestoreWindow(window.handle());
     if (in.fullscreen) window.set_fullscreen(*in.fullscreen);
     if (in.toggle_fullscreen) window.set_fullscreen(!window.fullscreen());
-}
-
-// The echographic image's panel: the right of the window, as tall as it is, keeping the image's
-// aspect (at most half the width).
-render::PanelRect echo_panel_rect(VkExtent2D window, const echo::ImagePlane& plane)
-{
-    const float aspect = float(plane.width_mm / plane.depth_mm) * float(window.height) / float(std::max(window.width, 1u));
-    const float width = std::min(aspect, 0.5f);
-    const float height = width / aspect;
-    return {1.0f - width, 0.5f * (1.0f - height), width, height};
 }
 
 // What the live link's clients did since the last call, one line each.
@@ -163,21 +151,15 @@ int run_window(const RunArgs& args)
         if (!scene.session.haptics_note().empty()) std::printf("echosim run: %s\n", scene.session.haptics_note().c_str());
         gpu::CommandPool commands(ctx);  // this (the main) thread's
         gpu::WindowPresenter presenter(commands, window);
-        render::ScenePass scene_pass(ctx, commands, presenter.format(), scene.meshes());
-        // the echographic image beside the scene, made on the GPU every frame from the session's
-        // latest physics step (its volume uploaded once)
-        auto volume = std::make_shared<const image::EchoVolumeGpu>(commands, *volumes.volume, volumes.labels.get());
-        image::EchoImageGpu echo_image(ctx, volume, scene.session.image_plane(), scene.session.patient());
-        const gpu::Sampler smooth(ctx, gpu::Filter::linear);
-        render::ImagePanelPass panel(ctx, presenter.format(), {});
-        EchoImagePass echo_pass(echo_image, panel, smooth);
-        const gpu::FramePasses passes{&scene_pass, &echo_pass, &panel};
+        // the scene, and beside it the echographic image made on the GPU every frame from the
+        // session's latest physics step
+        SessionFrame frame(ctx, commands, presenter.format(), scene, volumes);
         // with the link: every frame's image read back (a slot behind, no wait) and published with
         // the pose it was drawn at
         igtl::LiveFrame live;
         std::vector<igtl::ServerEvent> link_events;
         if (link)
-            echo_pass.enable_readback(ctx, [&](const echo::EchoFrame& drawn, std::span<const std::uint32_t> rgba, double wall_clock_s) {
+            frame.echo_pass().enable_readback(ctx, [&](const echo::EchoFrame& drawn, std::span<const std::uint32_t> rgba, double wall_clock_s) {
                 fill_live_frame(live, scene.session.image_plane(), drawn, rgba, wall_clock_s);
                 link->publish(live);
             });
@@ -220,9 +202,7 @@ int run_window(const RunArgs& args)
             if (link) report_link(*link, link_events);
 
             const session::SessionView& state = scene.session.view();  // one physics step for the scene and the image
-            scene_pass.set_view(scene.frame_view(state));
-            echo_pass.set_frame(*state.echo);
-            panel.set_rect(echo_panel_rect(presenter.extent(), scene.session.image_plane()));
+            frame.set(scene, state, presenter.extent());
             if (scene.session.time() - last_title > 0.2) {
                 char title[160];
                 if (device_status.empty())
@@ -232,7 +212,7 @@ int run_window(const RunArgs& args)
                 glfwSetWindowTitle(window.handle(), title);
                 last_title = scene.session.time();
             }
-            if (presenter.draw(passes)) {
+            if (presenter.draw(frame.passes())) {
                 last_shown = std::chrono::steady_clock::now();
                 if (++presented == 1) first_shown = last_shown;
             }

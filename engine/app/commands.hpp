@@ -149,6 +149,15 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct SoakArgs {
+    GpuArgs gpu;
+    double seconds = 120;
+    std::filesystem::path json;  // empty: no report file
+    std::uint32_t width = 1280, height = 720;
+    std::string deadlines = "strict";  // strict | p99 | report (app/soak.hpp)
+};
+int run_soak(const SoakArgs& args);
+
 struct DevicesArgs {
     bool json = false;  // a JSON array instead of the text
 };

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -30,9 +31,15 @@ ForceCurveSummary summarise(const std::vector<ForceLogRow>& rows, double ForceLo
 
 }  // namespace
 
-SlideTrajectory make_slide_trajectory(const scene::LegModel& leg, const SlideScript& sc)
+namespace {
+
+double script_end_s(const SlideScript& sc) { return 2.0 * (sc.approach_s + sc.hold_s) + sc.slide_s; }
+
+// The script's poses every row_s from `t0` [s] on (its own time 0), appended to `rows`; the first
+// one left out when it is already there (the end of the round before).
+void append_slide_rows(const scene::LegModel& leg, const SlideScript& sc, double t0, bool skip_first, std::vector<device::TrajectoryRow>& rows)
 {
-    const double slide_end = sc.approach_s + sc.hold_s + sc.slide_s, end = slide_end + sc.hold_s + sc.approach_s;
+    const double end = script_end_s(sc);
     // press along the beam over time: down from lift_mm above, hold, slide, hold, back up
     auto press_at = [&](double t) {
         const double down = -sc.lift_mm + (sc.press_mm + sc.lift_mm) * std::clamp(t / sc.approach_s, 0.0, 1.0);
@@ -43,23 +50,42 @@ SlideTrajectory make_slide_trajectory(const scene::LegModel& leg, const SlideScr
         const double s = std::clamp((t - sc.approach_s - sc.hold_s) / sc.slide_s, 0.0, 1.0);
         return sc.v_from + (sc.v_to - sc.v_from) * s;
     };
-    std::vector<device::TrajectoryRow> rows;
-    for (long i = 0;; ++i) {
+    for (long i = skip_first ? 1 : 0;; ++i) {
         const double t = std::min(double(i) * sc.row_s, end);
         const Pose p = pressed_along_beam(leg.probe_rest_pose(float(sc.u), float(v_at(t))), press_at(t));
         device::TrajectoryRow r;
-        r.t_s = t;
+        r.t_s = t0 + t;
         r.position = {p.position.x, p.position.y, p.position.z};
         r.orientation = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z).normalized();
         rows.push_back(r);
         if (t >= end) break;
     }
+}
+
+}  // namespace
+
+SlideTrajectory make_slide_trajectory(const scene::LegModel& leg, const SlideScript& sc)
+{
+    std::vector<device::TrajectoryRow> rows;
+    append_slide_rows(leg, sc, 0.0, false, rows);
     SlideTrajectory out{device::Trajectory::parse(device::format_trajectory(rows), "the slide script"), 0, 0};
     // pressed at least 1 mm in: from (1 + lift) / (press + lift) of the way down to as far back up
     const double in = (1.0 + sc.lift_mm) / (sc.press_mm + sc.lift_mm) * sc.approach_s;
     out.on_skin_from_s = in;
-    out.on_skin_to_s = end - in;
+    out.on_skin_to_s = script_end_s(sc) - in;
     return out;
+}
+
+double round_trip_s(const SlideScript& script) { return 2.0 * script_end_s(script); }
+
+device::Trajectory make_round_trip_trajectory(const scene::LegModel& leg, const SlideScript& sc)
+{
+    std::vector<device::TrajectoryRow> rows;
+    append_slide_rows(leg, sc, 0.0, false, rows);
+    SlideScript back = sc;
+    std::swap(back.v_from, back.v_to);
+    append_slide_rows(leg, back, script_end_s(sc), true, rows);
+    return device::Trajectory::parse(device::format_trajectory(rows), "the slide script, there and back");
 }
 
 Fig8Result run_fig8(const SlideScript& script, double physics_hz)

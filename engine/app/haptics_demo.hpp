@@ -30,6 +30,12 @@ struct SlideTrajectory {
     double on_skin_from_s = 0, on_skin_to_s = 0;
 };
 SlideTrajectory make_slide_trajectory(const scene::LegModel& leg, const SlideScript& script = {});
+// The script there and back: across the thigh from v_from to v_to, then from v_to back to v_from,
+// pressing and lifting each way; it ends where it starts (lifted above v_from), so a device can
+// loop it without a jump (device::ScriptedDevice::Playback::loop). 7.2 s with the defaults.
+device::Trajectory make_round_trip_trajectory(const scene::LegModel& leg, const SlideScript& script = {});
+// How long one round trip lasts [s].
+double round_trip_s(const SlideScript& script = {});
 
 struct ForceLogRow {
     double t_s = 0;

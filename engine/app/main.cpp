@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "app/soak.hpp"
 #include "igtl/live_frame.hpp"
 
 namespace {
@@ -166,6 +167,24 @@ int main(int argc, char** argv)
     demo_cmd->add_option("--physics-hz", demo.physics_hz, "the physics' rate (the paper's: 100 Hz); the haptic loop runs at 1 kHz")
         ->check(finite_range(10.0, 1000.0));
     demo_cmd->add_flag("--json", demo.json, "print the summary as JSON on stdout");
+    SoakArgs soak;
+    auto* soak_cmd = app.add_subcommand(
+        "soak",
+        "a long scripted session, headless: the probe pressing and sliding across the thigh in a loop, the physics and the 1 kHz "
+        "haptic loop on the real-time clock, the echographic image and the scene rendered offscreen every frame, validation on. "
+        "Passes when resident memory is flat after the warm-up (the script's first round, 7.2 s, or a quarter of the run, "
+        "whichever is longer, at most 30 s): end - start <= 4 MiB and "
+        "the fitted line's rise <= 4 MiB; no validation message; haptic period error p99 <= 0.1 ms and no missed deadline "
+        "(> 1 ms late), as --deadlines says. Exit 0 passed, 1 a bound not held, 3 validation messages");
+    soak_cmd->add_option("--seconds", soak.seconds, "how long the session runs [s] (CI: 120; by hand: 600)")
+        ->check(finite_range(kSoakMinSeconds, 86400.0));
+    soak_cmd->add_option("--json", soak.json, "also write the report as JSON to this file");
+    soak_cmd->add_option("--width", soak.width, "offscreen frame width [px]")->check(finite_range(64u, 7680u));
+    soak_cmd->add_option("--height", soak.height, "offscreen frame height [px]")->check(finite_range(64u, 4320u));
+    soak_cmd->add_option("--deadlines", soak.deadlines,
+                         "which deadline bounds fail the run: strict (p99 and misses), p99 (misses reported only), report (neither)")
+        ->check(CLI::IsMember({"strict", "p99", "report"}));
+    add_gpu_options(soak_cmd, soak.gpu);
     DevicesArgs devices;
     auto* devices_cmd = app.add_subcommand("devices", "list the input and haptic devices echosim can drive, and whether each is ready");
     devices_cmd->add_flag("--json", devices.json, "print them as a JSON array");
@@ -190,6 +209,7 @@ int main(int argc, char** argv)
         if (reconstruct_cmd->parsed()) return run_reconstruct(reconstruct);
         if (demo_cmd->parsed()) return run_haptics_demo(demo);
         if (devices_cmd->parsed()) return run_devices(devices);
+        if (soak_cmd->parsed()) return run_soak(soak);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;

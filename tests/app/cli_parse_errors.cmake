@@ -2,7 +2,8 @@
 # of range, NaN or an infinity (which CLI11's own ranges let through), a value that is not a number, an unknown option, a missing required one; --help exits 0.
 foreach(args "render;--width;99999;--out;x.png" "slice;--press-mm;deep;--out;x.png" "reconstruct;--sweep;a.mha"
         "render;--out;x.png;--no-such-option" "reconstruct;--sweep;a.mha;--out;v.nrrd;--compound;median"
-        "render;--out;x.png;--press-mm;nan" "slice;--out;x.png;--force;inf" "reconstruct;--sweep;a.mha;--out;v.nrrd;--voxel-mm;nan")
+        "render;--out;x.png;--press-mm;nan" "slice;--out;x.png;--force;inf" "reconstruct;--sweep;a.mha;--out;v.nrrd;--voxel-mm;nan"
+        "soak;--seconds;0" "soak;--seconds;5" "soak;--seconds;nan" "soak;--seconds;inf" "soak;--deadlines;lenient")
   execute_process(COMMAND ${ECHOSIM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 2)
     message(FATAL_ERROR "echosim ${args}: expected exit code 2, got ${rc}:\n${out}${err}")
@@ -15,7 +16,7 @@ endif()
 
 # an output that is not a regular file is refused before any work, and stays what it was
 file(MAKE_DIRECTORY ${WORK})
-foreach(args "render;--gpu;cpu;--out;${WORK}" "reconstruct;--sweep;a.mha;--out;${WORK}/v.txt")
+foreach(args "render;--gpu;cpu;--out;${WORK}" "reconstruct;--sweep;a.mha;--out;${WORK}/v.txt" "soak;--seconds;10;--json;${WORK}")
   execute_process(COMMAND ${ECHOSIM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 2)
     message(FATAL_ERROR "echosim ${args}: expected exit code 2, got ${rc}:\n${out}${err}")

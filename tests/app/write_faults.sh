@@ -29,6 +29,7 @@ cases=(
   "reconstruct --sweep $work/in/s.mha --out OUT/out.nrrd --voxel-mm 1"
   "haptics-demo --out OUT/demo --physics-hz 100"
   "bench fit --min-time 0.01 --json OUT/out.json"
+  "soak --seconds 10 --deadlines report --json OUT/out.json"
 )
 
 # the files a case's output folder holds before it runs: old results that must survive

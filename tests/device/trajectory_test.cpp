@@ -55,6 +55,32 @@ TEST(Trajectory, InterpolatesBetweenRowsAndHoldsOutside)
     EXPECT_EQ(t.at(99.0).position, Eigen::Vector3d(10, -20, 4));
 }
 
+TEST(Trajectory, ALoopedScriptedDeviceStartsOverAtItsLastRow)
+{
+    // from x = 0 at 1 s to x = 10 at 3 s and back to 0 at 5 s: a 4 s loop
+    const Trajectory t = Trajectory::parse("t_s,x_mm,y_mm,z_mm,qw,qx,qy,qz\n"
+                                           "1, 0,0,0, 1,0,0,0\n"
+                                           "3, 10,0,0, 1,0,0,0\n"
+                                           "5, 0,0,0, 1,0,0,0\n",
+                                           "t.csv");
+    ScriptedDevice looped(t, "loop", ScriptedDevice::Playback::loop), once(t, "once");
+    DeviceSample s;
+    for (double t_s : {2.0, 6.0, 10.0, 4002.0}) {
+        ASSERT_TRUE(looped.read(t_s, s));
+        EXPECT_NEAR(s.position.x(), 5.0, 1e-9) << "at " << t_s << " s";
+    }
+    looped.read(7.0, s);  // round two's far end
+    EXPECT_NEAR(s.position.x(), 10.0, 1e-9);
+    looped.read(0.5, s);  // before the first row it holds, looped or not
+    EXPECT_EQ(s.position.x(), 0.0);
+    once.read(7.0, s);
+    EXPECT_EQ(s.position.x(), 0.0);
+    std::vector<DeviceEvent> events;
+    looped.events(events);
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_NE(events[0].message.find("looped"), std::string::npos) << events[0].message;
+}
+
 TEST(Trajectory, RefusesBadFilesNamingLineAndField)
 {
     const std::string h = "t_s,x_mm,y_mm,z_mm,qw,qx,qy,qz\n";

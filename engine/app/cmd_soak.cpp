@@ -1,0 +1,58 @@
+#include <cstdio>
+#include <stdexcept>
+
+#include "app/commands.hpp"
+#include "app/gpu_args.hpp"
+#include "app/soak.hpp"
+#include "io/partial_file.hpp"
+
+namespace echosim::app {
+
+int run_soak(const SoakArgs& args)
+{
+    if (!args.json.empty() && !output_path_usable("soak", "--json", args.json)) return kExitBadInput;
+    SoakOptions o;
+    o.seconds = args.seconds;
+    o.gpu = context_options(args.gpu);
+    o.width = args.width;
+    o.height = args.height;
+    o.deadlines = parse_deadline_check(args.deadlines);  // checked by the parser
+    o.progress = [](const SoakProgress& p) {
+        std::printf("echosim soak: %5.0f / %.0f s, %lld frames, resident %.1f MiB, %lld missed haptic deadlines\n", p.t_s, p.seconds, p.frames,
+                    p.rss_mib, p.haptic_missed);
+        std::fflush(stdout);
+    };
+    std::printf("echosim soak: %.0f s of a scripted session (warm-up %.1f s), making its volume...\n", o.seconds, soak_warmup_s(o.seconds));
+    std::fflush(stdout);
+    const SoakResult r = run_soak_session(o);
+
+    std::printf("echosim soak: %.1f s on %s (%ux%u): %lld frames (%.1f/s), %lld physics steps (%lld late), %lld haptic ticks (%s)\n",
+                r.seconds, r.device.c_str(), r.width, r.height, r.frames, r.seconds > 0 ? double(r.frames) / r.seconds : 0.0,
+                r.physics_steps, r.physics_late_steps, r.haptic_ticks, r.haptic_priority.c_str());
+    std::printf("echosim soak: resident memory %.1f MiB after the warm-up, %.1f MiB at the end (%+.2f MiB; fitted %+.2f MiB, %+.3f MiB/min), "
+                "at most %.1f MiB\n",
+                r.rss.start_mib, r.rss.end_mib, r.rss.growth_mib, r.rss.trend_mib, r.rss.slope_mib_per_min, r.rss.max_mib);
+    std::printf("echosim soak: haptic period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines; %u validation messages\n",
+                r.haptic_p50_ms, r.haptic_p99_ms, r.haptic_max_ms, r.haptic_missed, r.validation_messages);
+    for (const SoakBound& b : r.bounds)
+        std::printf("echosim soak:   %-24s %10.3f %-3s <= %g %-3s %s%s\n", b.name.c_str(), b.value, b.unit.c_str(), b.limit, b.unit.c_str(),
+                    b.held ? "held" : "NOT HELD", b.enforced ? "" : " (reported only)");
+    if (!args.json.empty()) {
+        io::write_file<std::runtime_error>(args.json, soak_json(r));  // a failure: main names the file
+        std::printf("echosim soak: wrote %s\n", args.json.c_str());
+    }
+    if (r.passed()) {
+        std::printf("echosim soak: passed\n");
+        return kExitOk;
+    }
+    bool validation = false;
+    for (const SoakBound& b : r.bounds)
+        if (b.enforced && !b.held) {
+            std::fprintf(stderr, "echosim soak: failed: %s %.3f %s over its bound %g %s\n", b.name.c_str(), b.value, b.unit.c_str(), b.limit,
+                         b.unit.c_str());
+            validation = validation || b.name == "validation_messages";
+        }
+    return validation ? kExitValidation : kExitFailure;
+}
+
+}  // namespace echosim::app

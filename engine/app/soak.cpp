@@ -1,0 +1,235 @@
+#include "app/soak.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "app/default_scene.hpp"
+#include "app/haptics_demo.hpp"
+#include "app/session_frame.hpp"
+#include "app/volume_source.hpp"
+#include "device/scripted_device.hpp"
+#include "echo/case_volume.hpp"
+#include "gpu/command_pool.hpp"
+#include "gpu/offscreen.hpp"
+#include "io/png.hpp"
+
+namespace echosim::app {
+namespace {
+
+// The image's volume: the healthy case made as `echosim run` makes it, but coarser (0.6 mm voxels
+// from 60 frames of 0.3 mm pixels), so it takes seconds, not a minute and a half; its content
+// does not change what a frame costs in memory.
+VolumePair soak_volume(const scene::LegModel& leg)
+{
+    const echo::CaseVolumeOptions coarse{.voxel_mm = 0.6, .frames = 60, .pixel_mm = 0.3};
+    echo::CaseVolume made = echo::make_case_volume(leg, echo::Case::healthy, coarse);
+    return {std::make_shared<const io::Volume>(std::move(made.volume)), std::make_shared<const io::Volume>(std::move(made.labels)),
+            "the healthy case at 0.6 mm"};
+}
+
+SoakBound bound(const char* name, double value, double limit, const char* unit, bool enforced)
+{
+    return {name, value, limit, unit, value <= limit, enforced};
+}
+
+}  // namespace
+
+DeadlineCheck parse_deadline_check(const std::string& name)
+{
+    for (DeadlineCheck c : {DeadlineCheck::strict, DeadlineCheck::p99, DeadlineCheck::report})
+        if (name == to_string(c)) return c;
+    throw std::invalid_argument("deadline check '" + name + "': strict, p99 or report");
+}
+
+const char* to_string(DeadlineCheck check)
+{
+    switch (check) {
+    case DeadlineCheck::strict: return "strict";
+    case DeadlineCheck::p99: return "p99";
+    case DeadlineCheck::report: return "report";
+    }
+    return "?";
+}
+
+double soak_warmup_s(double seconds) { return std::min(kSoakWarmupMaxS, std::max(round_trip_s(), kSoakWarmupFraction * seconds)); }
+
+double resident_mib()
+{
+    // statm: size resident shared text lib data dt, in pages
+    std::FILE* f = std::fopen("/proc/self/statm", "r");
+    if (!f) return 0;
+    unsigned long long size = 0, resident = 0;
+    const int got = std::fscanf(f, "%llu %llu", &size, &resident);
+    std::fclose(f);
+    if (got != 2) return 0;
+    return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+MemoryVerdict judge_memory(std::span<const SoakSample> samples, double warmup_s)
+{
+    MemoryVerdict v;
+    if (samples.empty()) return v;
+    for (const SoakSample& s : samples) v.max_mib = std::max(v.max_mib, s.rss_mib);
+    // from the first sample at or after the warm-up on (the last one if the run was shorter)
+    std::size_t first = 0;
+    while (first + 1 < samples.size() && samples[first].t_s < warmup_s) ++first;
+    const std::span<const SoakSample> after = samples.subspan(first);
+    v.samples = int(after.size());
+    v.start_mib = after.front().rss_mib;
+    v.end_mib = after.back().rss_mib;
+    v.growth_mib = v.end_mib - v.start_mib;
+    if (after.size() < 2) return v;
+    // least squares: slope = cov(t, rss) / var(t)
+    double mt = 0, mr = 0;
+    for (const SoakSample& s : after) mt += s.t_s, mr += s.rss_mib;
+    mt /= double(after.size());
+    mr /= double(after.size());
+    double ctr = 0, ctt = 0;
+    for (const SoakSample& s : after) {
+        ctr += (s.t_s - mt) * (s.rss_mib - mr);
+        ctt += (s.t_s - mt) * (s.t_s - mt);
+    }
+    const double slope = ctt > 0 ? ctr / ctt : 0.0;  // [MiB/s]
+    v.slope_mib_per_min = 60.0 * slope;
+    v.trend_mib = slope * (after.back().t_s - after.front().t_s);
+    return v;
+}
+
+std::vector<SoakBound> judge_soak(const SoakResult& r, DeadlineCheck deadlines)
+{
+    return {bound("rss_growth", r.rss.growth_mib, kSoakGrowthBoundMib, "MiB", true),
+            bound("rss_trend", r.rss.trend_mib, kSoakTrendBoundMib, "MiB", true),
+            bound("validation_messages", double(r.validation_messages), 0, "", true),
+            bound("haptic_period_p99", r.haptic_p99_ms, kSoakPeriodP99BoundMs, "ms", deadlines != DeadlineCheck::report),
+            bound("haptic_missed_deadlines", double(r.haptic_missed), 0, "", deadlines == DeadlineCheck::strict)};
+}
+
+bool SoakResult::passed() const
+{
+    return std::all_of(bounds.begin(), bounds.end(), [](const SoakBound& b) { return b.held || !b.enforced; });
+}
+
+SoakResult run_soak_session(const SoakOptions& o)
+{
+    if (!(o.seconds > 0) || !std::isfinite(o.seconds)) throw std::invalid_argument("soak length " + std::to_string(o.seconds) + " s: must be finite and > 0");
+    SoakResult r;
+    r.requested_s = o.seconds;
+    r.warmup_s = soak_warmup_s(o.seconds);
+    r.deadlines = o.deadlines;
+    r.width = o.width;
+    r.height = o.height;
+    const scene::LegModel leg;  // the session's leg is made the same way
+    const VolumePair volumes = soak_volume(leg);
+    gpu::ContextOptions gpu = o.gpu;
+    gpu.validation = true;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        gpu::Context ctx(gpu);
+        messages = ctx.validation_counter();
+        r.device = ctx.device_name();
+        session::SessionOptions so;
+        so.clock = session::Clock::real_time;
+        so.device = std::make_shared<device::ScriptedDevice>(make_round_trip_trajectory(leg), "the slide script, there and back",
+                                                             device::ScriptedDevice::Playback::loop);
+        DefaultScene scene(so);
+        r.haptic_priority = scene.session.haptics_note().empty() ? "SCHED_FIFO" : scene.session.haptics_note();
+        gpu::CommandPool commands(ctx);  // this thread's
+        gpu::OffscreenPresenter presenter(commands, {o.width, o.height});
+        SessionFrame frame(ctx, commands, presenter.format(), scene, volumes);
+        haptics::HapticLoop& loop = *scene.session.haptic_loop();
+        io::RgbaImage image;  // every frame read back into it (its pixels allocated once)
+        r.samples.reserve(std::size_t(o.seconds) + 2);  // no growth of our own during the run
+
+        const auto start = std::chrono::steady_clock::now();
+        auto last = start;
+        const double progress_every = std::max(5.0, 0.1 * o.seconds);
+        double next_sample = 0, next_progress = progress_every;
+        for (;;) {
+            const auto now = std::chrono::steady_clock::now();
+            const double t = std::chrono::duration<double>(now - start).count();
+            if (t >= next_sample || t >= o.seconds) {
+                r.samples.push_back({t, resident_mib(), r.frames, loop.stats().missed_deadlines});
+                next_sample = std::floor(t) + 1.0;
+                if (o.progress && (t >= next_progress || t >= o.seconds)) {
+                    o.progress({t, o.seconds, r.frames, r.samples.back().rss_mib, r.samples.back().haptic_missed});
+                    next_progress += progress_every;
+                }
+            }
+            if (t >= o.seconds) {
+                r.seconds = t;
+                break;
+            }
+            scene.session.advance(std::max(1e-4, std::chrono::duration<double>(now - last).count()));
+            last = now;
+            frame.set(scene, scene.session.view(), presenter.extent());
+            presenter.render(frame.passes(), &image);
+            ++r.frames;
+        }
+        scene.session.stop();
+        const physics::RunnerStats ps = scene.session.physics_stats();
+        r.physics_steps = ps.steps;
+        r.physics_late_steps = ps.overruns;
+        const haptics::PeriodStats h = loop.stats();
+        r.haptic_ticks = loop.ticks();
+        r.haptic_p50_ms = h.error_quantile_ms(0.5);
+        r.haptic_p99_ms = h.error_quantile_ms(0.99);
+        r.haptic_max_ms = h.max_error_ms;
+        r.haptic_missed = h.missed_deadlines;
+    }
+    // read after the device is gone: leaks are reported while it is destroyed
+    r.validation_messages = messages->load();
+    r.rss = judge_memory(r.samples, r.warmup_s);
+    r.bounds = judge_soak(r, o.deadlines);
+    return r;
+}
+
+std::string soak_json(const SoakResult& r)
+{
+    nlohmann::json bounds = nlohmann::json::array();
+    for (const SoakBound& b : r.bounds)
+        bounds.push_back({{"name", b.name}, {"value", b.value}, {"limit", b.limit}, {"unit", b.unit}, {"held", b.held}, {"enforced", b.enforced}});
+    nlohmann::json samples = nlohmann::json::array();
+    for (const SoakSample& s : r.samples)
+        samples.push_back({std::round(s.t_s * 1000.0) / 1000.0, std::round(s.rss_mib * 1000.0) / 1000.0, s.frames, s.haptic_missed});
+    const nlohmann::json j = {
+        {"command", "soak"},
+        {"pass", r.passed()},
+        {"seconds", r.seconds},
+        {"requested_seconds", r.requested_s},
+        {"warmup_s", r.warmup_s},
+        {"device", r.device},
+        {"frame", {{"width", r.width}, {"height", r.height}}},
+        {"frames", r.frames},
+        {"frames_per_s", r.seconds > 0 ? double(r.frames) / r.seconds : 0.0},
+        {"physics_steps", r.physics_steps},
+        {"physics_late_steps", r.physics_late_steps},
+        {"haptic_ticks", r.haptic_ticks},
+        {"haptic_priority", r.haptic_priority},
+        {"haptic_period_p50_ms", r.haptic_p50_ms},
+        {"haptic_period_p99_ms", r.haptic_p99_ms},
+        {"haptic_period_max_ms", r.haptic_max_ms},
+        {"haptic_missed_deadlines", r.haptic_missed},
+        {"validation_messages", r.validation_messages},
+        {"rss_start_mib", r.rss.start_mib},
+        {"rss_end_mib", r.rss.end_mib},
+        {"rss_max_mib", r.rss.max_mib},
+        {"rss_growth_mib", r.rss.growth_mib},
+        {"rss_trend_mib", r.rss.trend_mib},
+        {"rss_slope_mib_per_min", r.rss.slope_mib_per_min},
+        {"samples_columns", {"t_s", "rss_mib", "frames", "haptic_missed_deadlines"}},
+        {"samples", samples},  // one a second; frames and missed deadlines so far
+        {"deadlines", to_string(r.deadlines)},
+        {"bounds", bounds},
+    };
+    return j.dump(2) + "\n";
+}
+
+}  // namespace echosim::app

@@ -1,0 +1,126 @@
+// `echosim soak` (issue 13): a long scripted session, headless, with every part that runs in the
+// simulator running at once, to show that nothing grows, complains or falls behind over time:
+//   - the probe: a scripted device playing the Fig. 8 slide there and back, looped (it comes down
+//     onto the thigh, presses 6 mm in, slides across it, lifts, and does the same the other way);
+//   - the 1 kHz haptic loop on its own thread (SCHED_FIFO where permitted), the physics thread
+//     stepping the 2,500-node patch at 1 kHz, both on the real-time clock, as in `echosim run`;
+//   - on the calling thread, frame after frame: the patch deformed from the latest physics step,
+//     the echographic image (deform, slice, post) made on the GPU from the same step, and the
+//     scene with the image beside it rendered offscreen and read back (app/session_frame.hpp),
+//     with the Khronos validation layer always on.
+// Resident memory (/proc/self/statm) is sampled once a second. The run is judged by the bounds
+// below (the help text, the JSON and the README quote them): memory after a warm-up, validation
+// messages, and the haptic loop's deadlines (DESIGN.md §5).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gpu/context.hpp"
+
+namespace echosim::app {
+
+// The warm-up before the start figure: the script's first round (7.2 s: every state the probe
+// goes through, lifted, pressing, sliding each way, drawn at least once, so every pipeline and
+// buffer has been made) or a quarter of the run, whichever is longer, at most 30 s.
+inline constexpr double kSoakWarmupFraction = 0.25;
+inline constexpr double kSoakWarmupMaxS = 30.0;
+inline constexpr double kSoakMinSeconds = 10.0;  // a run has samples after its warm-up
+// Resident memory at the end minus at the end of the warm-up [MiB], at most.
+inline constexpr double kSoakGrowthBoundMib = 4.0;
+// The rise of the least-squares line through the samples after the warm-up, over their span [MiB],
+// at most: a steady leak that noise at the two end samples would hide.
+inline constexpr double kSoakTrendBoundMib = 4.0;
+// The haptic loop's period error, 99th percentile [ms], at most (DESIGN.md §5); and no missed
+// deadline (a wake-up more than one period, 1 ms, late).
+inline constexpr double kSoakPeriodP99BoundMs = 0.1;
+
+// Which of the deadline bounds fail the run (memory and validation always do):
+//   strict: both (a run by hand on a quiet machine);
+//   p99:    the 99th percentile only; missed deadlines are reported (CI: a shared VM's hypervisor
+//           can stall a vCPU for more than 1 ms, which no priority prevents);
+//   report: neither, reported only (tests on a loaded machine, without real-time priority).
+enum class DeadlineCheck { strict, p99, report };
+DeadlineCheck parse_deadline_check(const std::string& name);  // throws std::invalid_argument
+const char* to_string(DeadlineCheck check);
+
+double soak_warmup_s(double seconds);
+
+// Taken once a second.
+struct SoakSample {
+    double t_s = 0;      // since the run began
+    double rss_mib = 0;  // resident set [MiB]
+    long long frames = 0;         // drawn so far
+    long long haptic_missed = 0;  // the haptic loop's missed deadlines so far (when they happened)
+};
+
+// Resident memory of this process now [MiB] (/proc/self/statm); 0 where it cannot be read.
+double resident_mib();
+
+struct MemoryVerdict {
+    double start_mib = 0;  // the first sample at or after the warm-up
+    double end_mib = 0;    // the last sample
+    double max_mib = 0;    // over the whole run, warm-up included
+    double growth_mib = 0; // end - start
+    double trend_mib = 0;  // the fitted line's rise from the start sample's time to the end's
+    double slope_mib_per_min = 0;
+    int samples = 0;       // from the start sample on
+};
+MemoryVerdict judge_memory(std::span<const SoakSample> samples, double warmup_s);
+
+struct SoakBound {
+    std::string name;  // rss_growth, rss_trend, validation_messages, haptic_period_p99, haptic_missed_deadlines
+    double value = 0, limit = 0;  // held when value <= limit
+    std::string unit;
+    bool held = false;
+    bool enforced = true;  // a bound that does not hold fails the run
+};
+
+struct SoakResult {
+    double requested_s = 0, seconds = 0, warmup_s = 0;
+    std::string device;  // the Vulkan device
+    std::uint32_t width = 0, height = 0;
+    long long frames = 0;
+    long long physics_steps = 0, physics_late_steps = 0;
+    long long haptic_ticks = 0;
+    std::string haptic_priority;  // "SCHED_FIFO", or why not
+    double haptic_p50_ms = 0, haptic_p99_ms = 0, haptic_max_ms = 0;
+    long long haptic_missed = 0;
+    std::uint32_t validation_messages = 0;  // counted until the device was destroyed (leaks included)
+    std::vector<SoakSample> samples;
+    MemoryVerdict rss;
+    DeadlineCheck deadlines = DeadlineCheck::strict;
+    std::vector<SoakBound> bounds;
+
+    bool passed() const;
+};
+
+// The bounds of a finished run, judged (`r.rss` already judged).
+std::vector<SoakBound> judge_soak(const SoakResult& r, DeadlineCheck deadlines);
+
+struct SoakProgress {
+    double t_s = 0, seconds = 0;
+    long long frames = 0;
+    double rss_mib = 0;
+    long long haptic_missed = 0;
+};
+
+struct SoakOptions {
+    double seconds = 120;
+    gpu::ContextOptions gpu;  // validation is turned on whatever it says
+    std::uint32_t width = 1280, height = 720;
+    DeadlineCheck deadlines = DeadlineCheck::strict;
+    std::function<void(const SoakProgress&)> progress;  // about every tenth of the run
+};
+
+// Runs the soak (a few seconds of set-up, then `seconds` of session) and judges it. Throws what
+// set-up throws (no Vulkan device, no validation layer).
+SoakResult run_soak_session(const SoakOptions& options);
+
+// The report as JSON text (README "Soak").
+std::string soak_json(const SoakResult& r);
+
+}  // namespace echosim::app
