@@ -11,6 +11,7 @@
 #include "app/default_scene.hpp"
 #include "app/gpu_args.hpp"
 #include "app/headless.hpp"
+#include "core/image_limits.hpp"
 #include "core/parse_number.hpp"
 
 namespace echosim::app {
@@ -48,6 +49,11 @@ int run_render(const RenderArgs& args)
 {
     // check what the user gave before spending time on Vulkan
     if (!output_path_usable("render", "--out", args.out)) return kExitBadInput;
+    if (std::uint64_t(args.width) * args.height > kMaxImagePixels) {
+        std::fprintf(stderr, "echosim render: --width %u --height %u: more than %llu pixels (7680x4320, 8K UHD) in all\n", args.width,
+                     args.height, static_cast<unsigned long long>(kMaxImagePixels));
+        return kExitBadInput;
+    }
     session::SessionOptions options;  // the lock-step clock: only what is asked of the session is simulated
     if (!read_model_option("render", args.model, options.tissue)) return kExitBadInput;
     DefaultScene scene(options);

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "core/image_limits.hpp"
 #include "app/soak.hpp"
 #include "igtl/live_frame.hpp"
 
@@ -49,8 +50,9 @@ int main(int argc, char** argv)
     RenderArgs render;
     auto* render_cmd = app.add_subcommand("render", "render one frame headless to a PNG");
     render_cmd->add_option("--out", render.out, "PNG file to write")->required();
-    render_cmd->add_option("--width", render.width, "image width [px]")->check(finite_range(16u, 16384u));
-    render_cmd->add_option("--height", render.height, "image height [px]")->check(finite_range(16u, 16384u));
+    render_cmd->add_option("--width", render.width, "image width [px]; at most 8192 a side and 7680x4320 in all")
+        ->check(finite_range(16u, echosim::kMaxImageSide));
+    render_cmd->add_option("--height", render.height, "image height [px]")->check(finite_range(16u, echosim::kMaxImageSide));
     render_cmd->add_option("--pose", render.pose, "probe pose x,y,z,qw,qx,qy,qz in world (LPS mm)");
     render_cmd->add_option("--model", render.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
     render_cmd->add_option("--press-mm", render.press_mm, "press the probe this far into the skin and let the tissue settle [mm]")

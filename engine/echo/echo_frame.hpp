@@ -10,6 +10,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/image_limits.hpp"
 #include "core/pose.hpp"
 #include "core/probe_spec.hpp"
 #include "echo/phantom.hpp"
@@ -28,9 +29,9 @@ struct ImagePlane {
     double pixel_y_mm() const { return depth_mm / rows; }
     std::uint64_t pixels() const { return std::uint64_t(columns) * rows; }
 };
-// The most pixels a side may have, and in all (8K UHD fits): the image's buffers grow with it.
-inline constexpr std::uint32_t kMaxImageSide = 8192;
-inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(7680) * 4320;
+// The most pixels a side may have, and in all: core/image_limits.hpp.
+using echosim::kMaxImageSide;
+using echosim::kMaxImagePixels;
 // Throws std::invalid_argument naming the field (width, depth, columns, rows) that is out of range.
 void check_plane(const ImagePlane& plane);
 // The plane of the given size in mm at about `pixel_mm` pixels.

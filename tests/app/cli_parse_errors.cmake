@@ -2,7 +2,7 @@
 # of range, NaN or an infinity (which CLI11's own ranges let through), a value that is not a number, an unknown option, a missing required one; --help exits 0.
 foreach(args "render;--width;99999;--out;x.png" "slice;--press-mm;deep;--out;x.png" "reconstruct;--sweep;a.mha"
         "render;--out;x.png;--no-such-option" "reconstruct;--sweep;a.mha;--out;v.nrrd;--compound;median"
-        "render;--out;x.png;--press-mm;nan" "slice;--out;x.png;--force;inf" "reconstruct;--sweep;a.mha;--out;v.nrrd;--voxel-mm;nan"
+        "render;--out;x.png;--press-mm;nan" "render;--out;x.png;--width;8192;--height;8192" "render;--out;x.png;--width;16384;--height;16384" "slice;--out;x.png;--pixel-mm;0.005" "slice;--out;x.png;--force;inf" "reconstruct;--sweep;a.mha;--out;v.nrrd;--voxel-mm;nan"
         "soak;--seconds;0" "soak;--seconds;5" "soak;--seconds;nan" "soak;--seconds;inf" "soak;--deadlines;lenient")
   execute_process(COMMAND ${ECHOSIM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 2)
