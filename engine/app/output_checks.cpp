@@ -9,22 +9,26 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "io/text_fields.hpp"
 #include "tissue/tissue_json.hpp"
 
 namespace echosim::app {
+namespace {
+
+// the folder a path names a file in ("." for a bare name)
+std::filesystem::path folder_of(const std::filesystem::path& path) { return path.has_parent_path() ? path.parent_path() : "."; }
+
+}  // namespace
 
 bool output_path_usable(const char* command, const char* option, const std::filesystem::path& path)
 {
-    const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    const std::filesystem::path parent = folder_of(path);
     if (!std::filesystem::is_directory(parent)) {
         std::fprintf(stderr, "echosim %s: %s %s: folder %s does not exist\n", command, option, path.c_str(), parent.c_str());
         return false;
     }
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-        std::fprintf(stderr, "echosim %s: %s %s: not a regular file (a device, a FIFO or a folder); refusing to replace it\n",
-                     command, option, path.c_str());
+    if (io::text::is_special_file(path)) {
+        std::fprintf(stderr, "echosim %s: %s %s: %s; refusing to replace it\n", command, option, path.c_str(), io::text::not_regular_file);
         return false;
     }
     // a read-only folder (or file system) would fail only at the end, after the work
@@ -63,15 +67,14 @@ void write_together(const std::vector<std::filesystem::path>& paths,
     // one staging folder per destination folder (rename does not cross file systems)
     std::vector<Staging> staging(paths.size());
     for (std::size_t i = 0; i < paths.size(); ++i) {
-        const fs::path parent = paths[i].has_parent_path() ? paths[i].parent_path() : fs::path(".");
-        std::string name = (parent / ".echosim-writing-XXXXXX").string();
+        std::string name = (folder_of(paths[i]) / ".echosim-writing-XXXXXX").string();
         if (!::mkdtemp(name.data()))
             throw std::runtime_error(paths[i].string() + ": cannot make a folder to write it in: " + std::generic_category().message(errno));
         staging[i].folder = name;
         write(i, staging[i].folder / paths[i].filename());
     }
     for (std::size_t i = 0; i < paths.size(); ++i) {
-        const fs::path parent = paths[i].has_parent_path() ? paths[i].parent_path() : fs::path(".");
+        const fs::path parent = folder_of(paths[i]);
         for (const fs::directory_entry& e : fs::directory_iterator(staging[i].folder)) {
             std::error_code ec;
             fs::rename(e.path(), parent / e.path().filename(), ec);
