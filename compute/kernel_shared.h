@@ -27,6 +27,7 @@ using glm::abs;
 using glm::ceil;
 using glm::floor;
 using glm::mix;
+using glm::dot;
 using glm::mod;
 using std::sqrt;
 using std::exp2;

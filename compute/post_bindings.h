@@ -1,10 +1,11 @@
-// Bindings of compute/post.comp, the post stage of the echographic image, as on a scanner: the
-// sliced grey level back to echo strength in dB (the volume's own log compression undone over its
-// dynamic range), then gain, time-gain compensation (eight sliders down the depth, as on a
-// console), the deform stage's gain (the posterior enhancement a closed lumen takes away), and the
-// display's log compression (log_compress_bindings.h) over the chosen dynamic range; depth ticks
-// every 5 mm on the left (longer every 10 mm) and the focus marker on the right. Shared with its CPU
-// twin (engine/echo/post_cpu.cpp) and its dispatcher (engine/image/echo_image_gpu.cpp).
+// The maths of the post stage of the echographic image, as on a scanner: the sliced grey level back
+// to echo strength in dB (the volume's own log compression undone over its dynamic range), then
+// gain, time-gain compensation (eight sliders down the depth, as on a console), the deform stage's
+// gain (the posterior enhancement a closed lumen takes away), and the display's log compression
+// (log_compress_bindings.h) over the chosen dynamic range; depth ticks every 5 mm on the left
+// (longer every 10 mm) and the focus marker on the right. The slice kernel (compute/slice.comp)
+// runs it on each sample it takes (slice_bindings.h says why there is no separate dispatch); its CPU
+// twin is engine/echo/post_cpu.cpp.
 #ifndef ECHOSIM_POST_BINDINGS_H
 #define ECHOSIM_POST_BINDINGS_H
 
@@ -14,12 +15,6 @@
 #ifdef __cplusplus
 namespace echosim::kernels {
 #endif
-
-#define POST_GROUP_X 16
-#define POST_GROUP_Y 8
-#define POST_GREY_BINDING 0   // float per pixel from the slice stage: grey 0..255
-#define POST_MAP_BINDING 1    // vec2 per pixel from the deform stage (its gain read when POST_WARPED)
-#define POST_IMAGE_BINDING 2  // rgba8 storage image: the displayed image
 
 #define POST_WARPED 1u   // add the deform map's gain
 #define POST_MARKERS 2u  // draw the depth ticks and the focus marker
@@ -42,38 +37,61 @@ struct PostParams {
 };
 
 // The time-gain compensation at depth y [mm]: the sliders' values joined linearly, flat beyond.
+// Written as hat weights over the eight sliders rather than by indexing a vector with a computed
+// index, which llvmpipe turns into a per-lane loop through memory (it cost 4 ms a 1024² frame).
 KERNEL_FN float tgc_db(float y, PostParams p)
 {
     float at = clamp(y / p.depth_mm * 8.0f - 0.5f, 0.0f, 7.0f);
-    uint i = min(uint(at), 6u);
-    float f = at - float(i);
-    vec4 lo = i < 4u ? p.tgc_near : p.tgc_far, hi = i + 1u < 4u ? p.tgc_near : p.tgc_far;
-    return mix(lo[i % 4u], hi[(i + 1u) % 4u], f);
+    vec4 near_w = max(vec4(0.0f), vec4(1.0f) - abs(vec4(at) - vec4(0.0f, 1.0f, 2.0f, 3.0f)));
+    vec4 far_w = max(vec4(0.0f), vec4(1.0f) - abs(vec4(at) - vec4(4.0f, 5.0f, 6.0f, 7.0f)));
+    return dot(p.tgc_near, near_w) + dot(p.tgc_far, far_w);
 }
 
-// Whether pixel (c, r) shows a marker: a depth tick or the focus' triangle.
-KERNEL_FN bool marker_at(uint c, uint r, PostParams p)
+// What a row of the image shares: its gain before the deform stage's [dB], how many columns from
+// the left its depth tick covers (0: none), and how far from the right edge the focus' triangle
+// reaches on it [mm] (0 or less: not on this row). The per-pixel part (post_pixel) is then a few
+// operations, so a kernel that works a row segment at a time computes this once.
+struct PostRow {
+    float db_offset;
+    float tick_columns;
+    float focus_reach_mm;
+    float y_mm;
+};
+
+KERNEL_FN PostRow post_row(uint r, PostParams p)
 {
-    float y = pixel_y(r, p.pixel_y_mm);
+    PostRow row;
+    row.y_mm = pixel_y(r, p.pixel_y_mm);
+    row.db_offset = p.gain_db + tgc_db(row.y_mm, p);
+    row.tick_columns = 0.0f;
+    row.focus_reach_mm = 0.0f;
+    if ((p.flags & POST_MARKERS) == 0u) return row;
     float thick = max(p.pixel_y_mm, p.depth_mm / 300.0f);  // [mm] a tick's height
-    float tick = floor(y / 5.0f + 0.5f) * 5.0f;
-    if (tick > 0.0f && tick < p.depth_mm && abs(y - tick) < 0.5f * thick) {
+    float tick = floor(row.y_mm / 5.0f + 0.5f) * 5.0f;
+    if (tick > 0.0f && tick < p.depth_mm && abs(row.y_mm - tick) < 0.5f * thick) {
         bool major = mod(tick, 10.0f) < 0.5f;
-        float length = float(p.columns) * (major ? 0.03f : 0.015f) + 1.0f;
-        if (float(c) < length) return true;
+        row.tick_columns = float(p.columns) * (major ? 0.03f : 0.015f) + 1.0f;
     }
-    float from_right = float(p.columns - 1u - c) * p.pixel_x_mm;  // [mm]
-    float size = p.depth_mm / 80.0f;                                // the triangle's half height [mm]
-    return from_right < 2.0f * size && abs(y - p.focus_mm) < size * (1.0f - from_right / (2.0f * size));
+    // the triangle: half height `size` [mm] at the right edge, narrowing to a point 2 size in
+    float size = p.depth_mm / 80.0f;
+    row.focus_reach_mm = 2.0f * (size - abs(row.y_mm - p.focus_mm));
+    return row;
 }
 
-// The displayed grey of a pixel whose sliced grey level is `grey` and whose deform gain is `gain_db`.
+// The displayed grey of pixel column c on `row`, whose sliced grey level is `grey` and whose
+// deform gain is `gain_db`.
+KERNEL_FN uint post_pixel(uint c, float grey, float gain_db, PostRow row, PostParams p)
+{
+    float from_right = float(p.columns - 1u - c) * p.pixel_x_mm;  // [mm]
+    if (float(c) < row.tick_columns || from_right < row.focus_reach_mm) return 255u;
+    float db = (grey / 255.0f - 1.0f) * p.volume_dynamic_range_db + row.db_offset + ((p.flags & POST_WARPED) != 0u ? gain_db : 0.0f);
+    return display_grey(db, p.dynamic_range_db);
+}
+
+// The displayed grey of pixel (c, r): post_pixel on post_row(r).
 KERNEL_FN uint post_grey(uint c, uint r, float grey, float gain_db, PostParams p)
 {
-    if ((p.flags & POST_MARKERS) != 0u && marker_at(c, r, p)) return 255u;
-    float db = (grey / 255.0f - 1.0f) * p.volume_dynamic_range_db + p.gain_db + tgc_db(pixel_y(r, p.pixel_y_mm), p) +
-               ((p.flags & POST_WARPED) != 0u ? gain_db : 0.0f);
-    return display_grey(db, p.dynamic_range_db);
+    return post_pixel(c, grey, gain_db, post_row(r, p), p);
 }
 
 #ifdef __cplusplus

@@ -1,31 +1,52 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "deform_bindings.h"
+#extension GL_EXT_control_flow_attributes : require
 #include "slice_bindings.h"
 
-// The slice stage: one invocation per pixel. The grey volume is sampled through a linear sampler
-// (the hardware's trilinear filter) at normalised coordinates (index + 0.5) / size; the labels share
-// the volume's grid and are fetched at the nearest voxel.
+// The slice stage, with the post stage on each sample (slice_bindings.h): one invocation per
+// SLICE_RUN pixels of a row. The grey volume is sampled through a linear sampler (the hardware's
+// trilinear filter) at normalised coordinates (index + 0.5) / size; the labels share the volume's
+// grid and are fetched at the nearest voxel.
 layout(local_size_x = SLICE_GROUP_X, local_size_y = SLICE_GROUP_Y) in;
+// The SliceParams flags this pipeline was made for (its dispatcher sets them from the frame's
+// params): a constant, so the outputs and inputs switched off are compiled out, not masked.
+layout(constant_id = 0) const uint FLAGS = 0u;
 layout(binding = SLICE_VOLUME_BINDING) uniform sampler3D volume;
 layout(binding = SLICE_LABELS_BINDING) uniform usampler3D labels;
 layout(std430, binding = SLICE_MAP_BINDING) readonly buffer Map { vec2 map[]; };
-layout(std430, binding = SLICE_GREY_BINDING) writeonly buffer Grey { float grey[]; };
+layout(std430, binding = SLICE_GREY_BINDING) writeonly buffer Grey { float grey_out[]; };
 layout(std430, binding = SLICE_LABEL_OUT_BINDING) writeonly buffer LabelOut { uint label_out[]; };
-layout(push_constant) uniform Push { SliceParams params; };
+layout(std430, binding = SLICE_DISPLAY_BINDING) writeonly buffer Display { uint display[]; };
+layout(std140, binding = SLICE_FRAME_BINDING) uniform Frame { SliceFrame frame; };
 
 void main()
 {
-    uvec2 px = gl_GlobalInvocationID.xy;
-    if (px.x >= params.columns || px.y >= params.rows) return;
-    uint i = px.y * params.columns + px.x;
-    float y = (params.flags & SLICE_WARPED) != 0u ? map[i].x : pixel_y(px.y, params.pixel_y_mm);
-    vec3 index = vec3(params.probe_to_index * vec4(pixel_x(px.x, params.pixel_x_mm, params.width_mm), y, 0.0, 1.0));
+    uint word = gl_GlobalInvocationID.x, r = gl_GlobalInvocationID.y;
+    SliceParams s = frame.slice;
+    uint c0 = word * uint(SLICE_RUN);
+    if (c0 >= s.columns || r >= s.rows) return;
+    const bool warped = (FLAGS & SLICE_WARPED) != 0u, post = (FLAGS & SLICE_POST) != 0u;
     vec3 size = vec3(textureSize(volume, 0));
-    grey[i] = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;
-    if ((params.flags & SLICE_LABELS) != 0u) {
-        ivec3 v = ivec3(floor(index + 0.5));
-        bool in_map = all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, textureSize(labels, 0)));
-        label_out[i] = in_map ? texelFetch(labels, v, 0).r : 0u;
+    ivec3 label_size = textureSize(labels, 0);
+    PostRow row = post_row(r, frame.post);
+    float y = pixel_y(r, s.pixel_y_mm);
+    uint packed = 0u;
+    // a row's last word may reach past its last column: those bytes repeat that column (the copy
+    // into the image leaves them), so every lane runs the same code
+    [[unroll]] for (uint j = 0u; j < uint(SLICE_RUN); ++j) {
+        uint c = min(c0 + j, s.columns - 1u);
+        uint i = r * s.columns + c;
+        vec2 m = warped ? map[i] : vec2(y, 0.0);
+        vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
+        float grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;
+        if ((FLAGS & SLICE_GREY) != 0u) grey_out[i] = grey;
+        if ((FLAGS & SLICE_LABELS) != 0u) {
+            ivec3 v = ivec3(floor(index + 0.5));
+            bool in_map = all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, label_size));
+            label_out[i] = in_map ? texelFetch(labels, v, 0).r : 0u;
+        }
+        uint shown = post ? post_pixel(c, grey, m.y, row, frame.post) : uint(grey + 0.5);
+        packed |= min(shown, 255u) << (8u * j);
     }
+    display[r * slice_words(s.columns) + word] = packed;
 }

@@ -1,27 +1,36 @@
 // Bindings of compute/slice.comp, the slice stage of the echographic image (paper §6): the grey
 // level at each pixel of the probe's image plane, sampled trilinearly from the volume, at the depth
 // the deform stage maps the pixel back to (or at its own depth, undeformed); labels by nearest voxel
-// when asked. Shared with its CPU twin (engine/echo/slice_cpu.cpp) and its dispatcher
-// (engine/image/echo_image_gpu.cpp).
+// when asked. The post stage (post_bindings.h: gain, TGC, dynamic range, markers) runs in the same
+// invocation, on the sample it has just taken, and the displayed grey levels leave as bytes packed
+// four to a word: on llvmpipe every store to memory is a loop over the SIMD lanes, so a separate
+// post dispatch (a float stored and loaded again per pixel) and a 32-bit RGBA texel per pixel cost
+// more than the sampling itself. Shared with its CPU twins (engine/echo/slice_cpu.cpp,
+// engine/echo/post_cpu.cpp) and its dispatcher (engine/image/echo_image_gpu.cpp).
 #ifndef ECHOSIM_SLICE_BINDINGS_H
 #define ECHOSIM_SLICE_BINDINGS_H
 
-#include "kernel_shared.h"
+#include "post_bindings.h"
 
 #ifdef __cplusplus
 namespace echosim::kernels {
 #endif
 
-#define SLICE_GROUP_X 16
+#define SLICE_RUN 4  // pixels of a row one invocation takes: one word of the displayed image
+#define SLICE_GROUP_X 16  // invocations, each SLICE_RUN columns
 #define SLICE_GROUP_Y 8
 #define SLICE_VOLUME_BINDING 0  // sampler3D, linear: grey levels (UNORM8)
 #define SLICE_LABELS_BINDING 1  // usampler3D, nearest: tissue codes (a 1-voxel map of 0 without labels)
 #define SLICE_MAP_BINDING 2     // vec2 per pixel from the deform stage (read when SLICE_WARPED)
-#define SLICE_GREY_BINDING 3    // float per pixel: grey level 0..255 (0 outside the volume)
+#define SLICE_GREY_BINDING 3    // float per pixel: grey level 0..255, 0 outside the volume (written when SLICE_GREY)
 #define SLICE_LABEL_OUT_BINDING 4  // uint per pixel: tissue code (written when SLICE_LABELS)
+#define SLICE_DISPLAY_BINDING 5    // uint per SLICE_RUN pixels: displayed grey bytes, first pixel lowest; slice_words(columns) a row
+#define SLICE_FRAME_BINDING 6      // uniform: SliceFrame
 
 #define SLICE_WARPED 1u  // sample where the deform map says, not at the pixel's own depth
 #define SLICE_LABELS 2u  // also write the labels
+#define SLICE_GREY 4u    // also write the sliced grey levels
+#define SLICE_POST 8u    // the displayed bytes go through the post stage (else: the sliced grey, rounded)
 
 struct SliceParams {
     mat4 probe_to_index;  // pressed probe frame [mm] -> volume voxel index (the labels share its grid)
@@ -30,10 +39,20 @@ struct SliceParams {
     float pixel_x_mm;
     float pixel_y_mm;
     float width_mm;
-    uint flags;  // SLICE_WARPED | SLICE_LABELS
+    uint flags;  // SLICE_WARPED | SLICE_LABELS | SLICE_GREY | SLICE_POST
     uint pad0;
     uint pad1;
 };
+
+// A frame's parameters of the fused slice and post stages (a uniform buffer: more than push
+// constants are sure to hold).
+struct SliceFrame {
+    SliceParams slice;
+    PostParams post;
+};
+
+// The words a row of the displayed image takes.
+KERNEL_FN uint slice_words(uint columns) { return (columns + uint(SLICE_RUN) - 1u) / uint(SLICE_RUN); }
 
 // Whether a continuous voxel index lies where trilinear sampling has all eight neighbours (the CPU
 // reference's rule: outside, the image is black).

@@ -159,8 +159,8 @@ int run_window(const RunArgs& args)
         igtl::LiveFrame live;
         std::vector<igtl::ServerEvent> link_events;
         if (link)
-            frame.echo_pass().enable_readback(ctx, [&](const echo::EchoFrame& drawn, std::span<const std::uint32_t> rgba, double wall_clock_s) {
-                fill_live_frame(live, scene.session.image_plane(), drawn, rgba, wall_clock_s);
+            frame.echo_pass().enable_readback(ctx, [&](const echo::EchoFrame& drawn, std::span<const std::uint8_t> grey, double wall_clock_s) {
+                fill_live_frame(live, scene.session.image_plane(), drawn, grey, wall_clock_s);
                 link->publish(live);
             });
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "

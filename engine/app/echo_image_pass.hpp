@@ -23,9 +23,9 @@ namespace echosim::app {
 
 class EchoImagePass final : public gpu::FramePass {
 public:
-    // A frame drawn and read back: its input, its displayed image (RGBA8, row-major), and the wall
+    // A frame drawn and read back: its input, its displayed image (grey bytes, row-major), and the wall
     // clock [s since the UNIX epoch] when its input was set.
-    using ReadbackSink = std::function<void(const echo::EchoFrame& frame, std::span<const std::uint32_t> rgba, double wall_clock_s)>;
+    using ReadbackSink = std::function<void(const echo::EchoFrame& frame, std::span<const std::uint8_t> grey, double wall_clock_s)>;
 
     // `panel` must come after this pass in the frame's passes; all three must outlive the frames.
     EchoImagePass(image::EchoImageGpu& pipeline, render::ImagePanelPass& panel, const gpu::Sampler& sampler)

@@ -10,10 +10,10 @@
 
 namespace echosim::app {
 
-// Fills `out` (its pixel storage reused) with the image `rgba` (RGBA8 grey, as the display shows
-// it: the red channel is the grey level) of `plane` drawn from `frame`: the image placed where the
+// Fills `out` (its pixel storage reused) with the image `grey` (a byte a pixel, as the display shows
+// it) of `plane` drawn from `frame`: the image placed where the
 // probe's face put it (echo::pixel_to_world, 1 mm thick), the probe's pose, the wall clock.
-void fill_live_frame(igtl::LiveFrame& out, const echo::ImagePlane& plane, const echo::EchoFrame& frame, std::span<const std::uint32_t> rgba,
+void fill_live_frame(igtl::LiveFrame& out, const echo::ImagePlane& plane, const echo::EchoFrame& frame, std::span<const std::uint8_t> grey,
                      double wall_clock_s);
 
 }  // namespace echosim::app

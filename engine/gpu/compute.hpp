@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <span>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -37,7 +38,8 @@ struct Groups {
 
 class ComputeKernel {
 public:
-    // `bindings[i]` is the kind of binding i; `push_bytes` of push constants.
+    // `bindings[i]` is the kind of binding i; `push_bytes` of push constants. `spirv` must outlive
+    // the kernel (the embedded shaders do): variants are made from it later.
     ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name,
                   std::span<const BindingKind> bindings, std::uint32_t push_bytes);
     ComputeKernel(const Context& ctx, std::span<const std::uint32_t> spirv, const char* name,
@@ -57,14 +59,26 @@ public:
     void bind(int slot, std::initializer_list<Binding> resources) { bind(slot, std::span(resources.begin(), resources.size())); }
     // Records a dispatch of `groups` workgroups with slot `slot`'s bindings into `cmd`. Barriers
     // around it (what it reads was written, what it writes is read next) are the caller's.
-    void record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups) const;
+    // `variant` is the value of the kernel's specialization constant 0 (constant_id = 0), for
+    // kernels whose optional work must cost nothing when it is off: llvmpipe runs both sides of a
+    // branch under a lane mask, so an output switched off by a uniform flag still costs its stores'
+    // per-lane loops, where a constant removes them. Each variant's pipeline is made the first
+    // time it is recorded (a kernel is recorded from one thread at a time).
+    void record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups, std::uint32_t variant = 0) const;
 
 private:
     const Context& ctx_;
     const char* name_;
     std::uint32_t push_bytes_;
     SlotDescriptors descriptors_;
-    Pipeline pipeline_;  // on descriptors_' layout: declared after it
+    Pipeline pipeline_;  // variant 0, and the layout of all: on descriptors_' layout, declared after it
+    std::span<const std::uint32_t> spirv_;  // the embedded code, for the other variants
+    struct Variant {
+        std::uint32_t value;
+        VkPipeline pipeline;
+    };
+    mutable std::vector<Variant> variants_;  // made on first use; destroyed with the kernel
+    VkPipeline variant(std::uint32_t value) const;
 };
 
 }  // namespace echosim::gpu

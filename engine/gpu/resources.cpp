@@ -77,9 +77,10 @@ void Buffer::write(std::span<const std::byte> bytes, VkDeviceSize offset)
     std::memcpy(static_cast<std::byte*>(mapped_) + offset, bytes.data(), bytes.size());
 }
 
-Image::Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect)
+Image::Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect,
+             VkComponentMapping swizzle)
 {
-    create(ctx, VK_IMAGE_TYPE_2D, {extent.width, extent.height, 1}, format, usage, aspect);
+    create(ctx, VK_IMAGE_TYPE_2D, {extent.width, extent.height, 1}, format, usage, aspect, swizzle);
 }
 
 Image::Image(const Context& ctx, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage)
@@ -88,7 +89,7 @@ Image::Image(const Context& ctx, VkExtent3D extent, VkFormat format, VkImageUsag
 }
 
 void Image::create(const Context& ctx, VkImageType type, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage,
-                   VkImageAspectFlags aspect)
+                   VkImageAspectFlags aspect, VkComponentMapping swizzle)
 {
     const std::string kind = type == VK_IMAGE_TYPE_3D ? "a 3-D image" : "an image";
     const std::string size = std::to_string(extent.width) + "x" + std::to_string(extent.height) +
@@ -136,6 +137,7 @@ void Image::create(const Context& ctx, VkImageType type, VkExtent3D extent, VkFo
         view.image = image_;
         view.viewType = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
         view.format = format;
+        view.components = swizzle;
         view.subresourceRange = {aspect, 0, 1, 0, 1};
         check(vkCreateImageView(device_, &view, nullptr, &view_), "vkCreateImageView");
     } catch (...) {

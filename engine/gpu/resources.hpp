@@ -47,8 +47,10 @@ private:
 class Image {
 public:
     Image() = default;
-    // A 2-D image (render targets, depth buffers, the echographic image).
-    Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
+    // A 2-D image (render targets, depth buffers, the echographic image). `swizzle` is its view's
+    // (a one-channel grey image read as grey: {R, R, R, ONE}).
+    Image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect,
+          VkComponentMapping swizzle = {});
     // A 3-D colour image (volumes sampled by compute kernels); its view is a 3-D view.
     Image(const Context& ctx, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage);
     ~Image() { reset(); }
@@ -67,7 +69,7 @@ public:
 
 private:
     void create(const Context& ctx, VkImageType type, VkExtent3D extent, VkFormat format, VkImageUsageFlags usage,
-                VkImageAspectFlags aspect);
+                VkImageAspectFlags aspect, VkComponentMapping swizzle = {});
     void reset();
     VkDevice device_ = VK_NULL_HANDLE;
     VkImage image_ = VK_NULL_HANDLE;

@@ -65,81 +65,100 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
               sizeof(kernels::DeformParams)),
       slice_(ctx, kernels::slice_comp, "slice.comp",
              {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer,
-              gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer},
-             sizeof(kernels::SliceParams)),
-      post_(ctx, kernels::post_comp, "post.comp",
-            {gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_image},
-            sizeof(kernels::PostParams))
+              gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
+              gpu::BindingKind::uniform_buffer},
+             0)
 {
     static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
                       DEFORM_MAP_BINDING == 4,
                   "deform bindings in the order declared above");
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
-                      SLICE_LABEL_OUT_BINDING == 4,
+                      SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6,
                   "slice bindings in the order declared above");
-    static_assert(POST_GREY_BINDING == 0 && POST_MAP_BINDING == 1 && POST_IMAGE_BINDING == 2, "post bindings in the order declared above");
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
     const VkDeviceSize pixels = plane_.pixels();
+    const VkDeviceSize display_bytes = VkDeviceSize(kernels::slice_words(plane_.columns)) * 4 * plane_.rows;
     constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     for (int s = 0; s < gpu::kFramesInFlight; ++s) {
         Slot& slot = slots_[std::size_t(s)];
         slot.profile = gpu::Buffer(ctx, plane_.columns * sizeof(echo::ColumnProfile), storage, gpu::MemoryUse::host_visible);
+        slot.params = gpu::Buffer(ctx, sizeof(kernels::SliceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
+        slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.scratch = gpu::Buffer(ctx, VkDeviceSize(plane_.columns) * max_steps_ * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
         slot.map = gpu::Buffer(ctx, pixels * 2 * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.grey = gpu::Buffer(ctx, pixels * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.labels = gpu::Buffer(ctx, pixels * sizeof(std::uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
-        slot.image = gpu::Image(ctx, VkExtent2D{plane_.columns, plane_.rows}, VK_FORMAT_R8G8B8A8_UNORM,
-                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                VK_IMAGE_ASPECT_COLOR_BIT);
+        slot.image = gpu::Image(ctx, VkExtent2D{plane_.columns, plane_.rows}, VK_FORMAT_R8_UNORM,
+                                VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                VK_IMAGE_ASPECT_COLOR_BIT,
+                                {VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_ONE});
         deform_.bind(s, {gpu::Binding::sampled(volume_->labels(), volume_->nearest()), gpu::Binding::storage(slot.profile),
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map)});
         slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
-                        gpu::Binding::storage(slot.map), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels)});
-        post_.bind(s, {gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.map), gpu::Binding::storage(slot.image)});
+                        gpu::Binding::storage(slot.map), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
+                        gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params)});
     }
 }
 
 void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels,
                           Stages stages)
 {
+    record_frame(cmd, slot_index, frame, final_layout, want_labels, false, stages);
+}
+
+void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo::EchoFrame& frame, VkImageLayout final_layout,
+                                bool want_labels, bool want_grey, Stages stages)
+{
     if (!frame.columns.empty() && frame.columns.size() != plane_.columns)
         throw std::invalid_argument("echographic image: " + std::to_string(frame.columns.size()) + " column profiles for " +
                                     std::to_string(plane_.columns) + " columns");
     Slot& slot = slots_[std::size_t(slot_index)];
+    const bool warped = !frame.columns.empty();
+    const bool all = stages == Stages::all;
     echo::KernelParams k = echo::make_kernel_params(volume_->grid(), plane_, frame, scanner_, patient_, volume_->labelled());
     k.deform.max_steps = max_steps_;
     if (want_labels && volume_->labelled()) k.slice.flags |= SLICE_LABELS;
-    const bool warped = !frame.columns.empty();
-    const bool all = stages == Stages::all;
+    if (all) k.slice.flags |= SLICE_POST;
+    if (want_grey) k.slice.flags |= SLICE_GREY;
+    // the slot's previous frame is done (the caller waited for it), so its host-visible inputs are free
+    const kernels::SliceFrame params{k.slice, k.post};
+    slot.params.write(bytes_of(params));
 
-    // deform: the slot's previous frame is done (the caller waited for it), so its profile is free
     if (warped && all) {
         slot.profile.write(std::as_bytes(std::span(frame.columns)));
         deform_.record(cmd, slot_index, bytes_of(k.deform), gpu::Groups::cover(plane_.columns, DEFORM_GROUP_SIZE));
         compute_to_compute(cmd);
     }
-    // slice, then post into the displayed image (its last contents are not needed)
-    const VkExtent2D extent{plane_.columns, plane_.rows};
-    slice_.record(cmd, slot_index, bytes_of(k.slice), gpu::Groups::cover(extent, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}));
-    compute_to_compute(cmd);
+    slice_.record(cmd, slot_index, {},
+                  gpu::Groups::cover(VkExtent2D{kernels::slice_words(plane_.columns), plane_.rows}, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}),
+                  k.slice.flags);
     if (!all) return;
-    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    post_.record(cmd, slot_index, bytes_of(k.post), gpu::Groups::cover(extent, VkExtent2D{POST_GROUP_X, POST_GROUP_Y}));
+
+    // the packed bytes into the displayed image (its last contents are not needed)
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy from_words{};
+    from_words.bufferRowLength = kernels::slice_words(plane_.columns) * SLICE_RUN;
+    from_words.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    from_words.imageExtent = {plane_.columns, plane_.rows, 1};
+    vkCmdCopyBufferToImage(cmd, slot.display.handle(), slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &from_words);
+
     const bool to_transfer = final_layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     const VkPipelineStageFlags2 reader = to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
     const VkAccessFlags2 read = to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
     if (!readback_enabled_) {
-        gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, final_layout,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, reader, read);
+        gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout,
+                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, reader, read);
         return;
     }
     // the live read-back: the image to the slot's host buffer, then on to its reader
-    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                    VK_ACCESS_2_TRANSFER_READ_BIT);
+    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy to_buffer{};
     to_buffer.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     to_buffer.imageExtent = {plane_.columns, plane_.rows, 1};
@@ -154,14 +173,14 @@ void EchoImageGpu::enable_readback(const gpu::Context& ctx)
 {
     if (readback_enabled_) return;
     for (Slot& slot : slots_)
-        slot.readback = gpu::Buffer(ctx, plane_.pixels() * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::host_visible);
+        slot.readback = gpu::Buffer(ctx, plane_.pixels(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::host_visible);
     readback_enabled_ = true;
 }
 
-std::span<const std::uint32_t> EchoImageGpu::readback(int slot) const
+std::span<const std::uint8_t> EchoImageGpu::readback(int slot) const
 {
     if (!readback_enabled_) return {};
-    return {static_cast<const std::uint32_t*>(slots_[std::size_t(slot)].readback.mapped()), plane_.pixels()};
+    return {static_cast<const std::uint8_t*>(slots_[std::size_t(slot)].readback.mapped()), plane_.pixels()};
 }
 
 echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFrame& frame, bool want_labels)
@@ -170,11 +189,11 @@ echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFra
     const VkDeviceSize pixels = plane_.pixels();
     const bool warped = !frame.columns.empty(), labels = want_labels && volume_->labelled();
     // one host-visible buffer takes every output back: image, grey, map, labels
-    const VkDeviceSize image_bytes = pixels * 4, grey_bytes = pixels * 4, map_bytes = warped ? pixels * 8 : 0, label_bytes = labels ? pixels * 4 : 0;
+    const VkDeviceSize image_bytes = pixels, grey_bytes = pixels * 4, map_bytes = warped ? pixels * 8 : 0, label_bytes = labels ? pixels * 4 : 0;
     gpu::Buffer readback(ctx, image_bytes + grey_bytes + map_bytes + label_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::host_visible);
     const Slot& slot = slots_[0];
     pool.submit_and_wait([&](VkCommandBuffer cmd) {
-        record(cmd, 0, frame, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, want_labels);
+        record_frame(cmd, 0, frame, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, want_labels, true, Stages::all);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferImageCopy to_buffer{};
@@ -198,7 +217,10 @@ echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFra
     out.rows = plane_.rows;
     const auto* bytes = static_cast<const std::byte*>(readback.mapped());
     out.rgba.resize(pixels);
-    std::memcpy(out.rgba.data(), bytes, image_bytes);
+    for (VkDeviceSize i = 0; i < pixels; ++i) {
+        const std::uint32_t g = std::uint32_t(bytes[i]);
+        out.rgba[i] = g | (g << 8) | (g << 16) | (255u << 24);
+    }
     out.grey.resize(pixels);
     std::memcpy(out.grey.data(), bytes + image_bytes, grey_bytes);
     if (warped) {

@@ -1,6 +1,7 @@
-// The echographic image pipeline on the GPU (DESIGN.md §1): deform ▶ slice ▶ post, the three
-// kernels of compute/, from a volume and its labels held on the GPU as 3-D images to the displayed
-// image, with no round trip through host memory. Per frame the host hands over only the frame's
+// The echographic image pipeline on the GPU (DESIGN.md §1): deform ▶ slice ▶ post, the kernels of
+// compute/ (deform.comp, then slice.comp, which runs the post stage on each sample), from a volume
+// and its labels held on the GPU as 3-D images to the displayed image, with no round trip through
+// host memory. Per frame the host hands over only the frame's
 // small input (the probe's pose and, per image column, the skin's indentation: echo::EchoFrame).
 //
 // Two uses, one set of kernels:
@@ -8,6 +9,9 @@
 //     record() for the frame's slot, then the panel shows image(slot));
 //   - offscreen (render()): one frame, waited for and read back, for `echosim slice`, the tests
 //     and the benchmark.
+// The displayed image is one grey byte a pixel (R8_UNORM, its view swizzled to grey: {R, R, R, 1}),
+// which the slice kernel writes packed four to a word into a buffer and a copy puts into the image.
+//
 // Live read-back (`echosim run --igtl`, the link to 3D Slicer), only when asked for
 // (enable_readback()): record() then also copies the slot's displayed image into a host-visible
 // buffer of the slot, in the same command buffer, after the post stage and before the panel reads
@@ -15,8 +19,8 @@
 // presenter waits for anyway before it records the slot again (kFramesInFlight frames later), so
 // the pixels arrive a frame or two behind the display and the display path keeps its pace.
 //
-// Frame slots: every buffer a frame writes (the profile, the scratch, the deform map, the grey and
-// label images, the displayed image) exists once per slot, so the frame being recorded never
+// Frame slots: every buffer a frame writes (the profile, the kernels' parameters, the scratch, the
+// deform map, the grey and label images, the displayed image) exists once per slot, so the frame being recorded never
 // touches what the GPU may still be reading for the other slot (gpu/frame.hpp).
 //
 // Lifetime: the kernels wait for the device before they go, and are declared last, so they go
@@ -61,9 +65,10 @@ private:
     gpu::Sampler linear_, nearest_;
 };
 
-// Which of the frame's stages record() records: all three (a live frame), or the slice kernel
-// alone (the benchmark's split of the frame's cost; a pressed frame's slice then reads the slot's
-// deform map as the slot's last full frame left it, and the displayed image is not written).
+// Which of the frame's stages record() records: all (a live frame), or the slice alone (the
+// benchmark's split of the frame's cost: the slice kernel without the post stage and without the
+// copy into the displayed image; a pressed frame's slice then reads the slot's deform map as the
+// slot's last full frame left it, and the displayed image is not written).
 enum class Stages { all, slice_only };
 
 class EchoImageGpu {
@@ -86,10 +91,10 @@ public:
     // From now on, record() also copies each frame's displayed image to the host (above).
     void enable_readback(const gpu::Context& ctx);
     bool readback_enabled() const { return readback_enabled_; }
-    // The displayed image (RGBA8 texels, row-major) the slot's last frame wrote: valid once that
+    // The displayed image (grey bytes, row-major) the slot's last frame wrote: valid once that
     // frame's fence has signalled (when the slot is next recorded, before record()); empty while
     // read-back is off.
-    std::span<const std::uint32_t> readback(int slot) const;
+    std::span<const std::uint8_t> readback(int slot) const;
 
     // One frame, offscreen: recorded in slot 0, submitted through `pool` (the calling thread's),
     // waited for, and read back with the stages' outputs (the map only when the frame presses; the
@@ -97,9 +102,13 @@ public:
     echo::EchoImage render(gpu::CommandPool& pool, const echo::EchoFrame& frame, bool want_labels = false);
 
 private:
+    // record(), and render()'s: `want_grey` also fills the slot's grey buffer (the sliced levels).
+    void record_frame(VkCommandBuffer cmd, int slot, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels,
+                      bool want_grey, Stages stages);
     struct Slot {
-        gpu::Buffer profile;  // host-visible, written when the slot is recorded
+        gpu::Buffer profile, params;  // host-visible, written when the slot is recorded
         gpu::Buffer scratch, map, grey, labels;
+        gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
         gpu::Buffer readback;  // host-visible, with enable_readback()
     };
@@ -112,7 +121,7 @@ private:
     gpu::Buffer tissues_;  // uniform, written once
     std::array<Slot, gpu::kFramesInFlight> slots_;
     // last, so destroyed first: they wait for the device before the resources they bind go
-    gpu::ComputeKernel deform_, slice_, post_;
+    gpu::ComputeKernel deform_, slice_;
 };
 
 }  // namespace echosim::image

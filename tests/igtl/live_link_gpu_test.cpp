@@ -67,8 +67,8 @@ TEST(IgtlLiveLink, PublishesTheImageTheGpuDrewWhereItsProbeWas)
         const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
         app::EchoImagePass pass(pipeline, panel, nearest);
         LiveFrame live;
-        pass.enable_readback(ctx, [&](const echo::EchoFrame& frame, std::span<const std::uint32_t> rgba, double wall_clock_s) {
-            app::fill_live_frame(live, plane, frame, rgba, wall_clock_s);
+        pass.enable_readback(ctx, [&](const echo::EchoFrame& frame, std::span<const std::uint8_t> grey, double wall_clock_s) {
+            app::fill_live_frame(live, plane, frame, grey, wall_clock_s);
             server.publish(live);
         });
         ClearPass clear;
