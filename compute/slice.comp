@@ -13,7 +13,7 @@ layout(local_size_x = SLICE_GROUP_X, local_size_y = SLICE_GROUP_Y) in;
 layout(constant_id = 0) const uint FLAGS = 0u;
 layout(binding = SLICE_VOLUME_BINDING) uniform sampler3D volume;
 layout(binding = SLICE_LABELS_BINDING) uniform usampler3D labels;
-layout(std430, binding = SLICE_MAP_BINDING) readonly buffer Map { vec2 map[]; };
+layout(binding = SLICE_MAP_BINDING) uniform samplerBuffer map;
 layout(std430, binding = SLICE_GREY_BINDING) writeonly buffer Grey { float grey_out[]; };
 layout(std430, binding = SLICE_LABEL_OUT_BINDING) writeonly buffer LabelOut { uint label_out[]; };
 layout(std430, binding = SLICE_DISPLAY_BINDING) writeonly buffer Display { uint display[]; };
@@ -36,7 +36,12 @@ void main()
     [[unroll]] for (uint j = 0u; j < uint(SLICE_RUN); ++j) {
         uint c = min(c0 + j, s.columns - 1u);
         uint i = r * s.columns + c;
-        vec2 m = warped ? map[i] : vec2(y, 0.0);
+        vec2 m = vec2(y, 0.0);
+        if (warped) {
+            MapTap t = map_tap(c, s);
+            uint row_start = r * s.map_columns;
+            m = mix(texelFetch(map, int(row_start + t.left)).xy, texelFetch(map, int(row_start + t.right)).xy, t.right_weight);
+        }
         vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
         float grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;
         if ((FLAGS & SLICE_GREY) != 0u) grey_out[i] = grey;

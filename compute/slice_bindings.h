@@ -21,7 +21,7 @@ namespace echosim::kernels {
 #define SLICE_GROUP_Y 8
 #define SLICE_VOLUME_BINDING 0  // sampler3D, linear: grey levels (UNORM8)
 #define SLICE_LABELS_BINDING 1  // usampler3D, nearest: tissue codes (a 1-voxel map of 0 without labels)
-#define SLICE_MAP_BINDING 2     // vec2 per pixel from the deform stage (read when SLICE_WARPED)
+#define SLICE_MAP_BINDING 2     // texel buffer, RG32F: the deform map, map_columns x rows (read when SLICE_WARPED)
 #define SLICE_GREY_BINDING 3    // float per pixel: grey level 0..255, 0 outside the volume (written when SLICE_GREY)
 #define SLICE_LABEL_OUT_BINDING 4  // uint per pixel: tissue code (written when SLICE_LABELS)
 #define SLICE_DISPLAY_BINDING 5    // uint per SLICE_RUN pixels: displayed grey bytes, first pixel lowest; slice_words(columns) a row
@@ -40,8 +40,8 @@ struct SliceParams {
     float pixel_y_mm;
     float width_mm;
     uint flags;  // SLICE_WARPED | SLICE_LABELS | SLICE_GREY | SLICE_POST
-    uint pad0;
-    uint pad1;
+    uint map_columns;      // the deform map's columns across the same width (deform_bindings.h)
+    float map_pixel_x_mm;  // and their spacing [mm]
 };
 
 // A frame's parameters of the fused slice and post stages (a uniform buffer: more than push
@@ -50,6 +50,24 @@ struct SliceFrame {
     SliceParams slice;
     PostParams post;
 };
+
+// Where pixel column c reads the deform map, which has map_columns columns across the image's
+// width: the map columns either side of the pixel's lateral position, and the right one's weight.
+struct MapTap {
+    uint left;
+    uint right;
+    float right_weight;
+};
+KERNEL_FN MapTap map_tap(uint c, SliceParams p)
+{
+    float last = float(p.map_columns - 1u);
+    float u = clamp((pixel_x(c, p.pixel_x_mm, p.width_mm) + 0.5f * p.width_mm) / p.map_pixel_x_mm - 0.5f, 0.0f, last);
+    MapTap t;
+    t.left = min(uint(u), p.map_columns - 1u);
+    t.right = min(t.left + 1u, p.map_columns - 1u);
+    t.right_weight = u - float(t.left);
+    return t;
+}
 
 // The words a row of the displayed image takes.
 KERNEL_FN uint slice_words(uint columns) { return (columns + uint(SLICE_RUN) - 1u) / uint(SLICE_RUN); }

@@ -81,13 +81,14 @@ struct EchoFrame {
 };
 
 // One image out of the pipeline. `rgba`: what the display shows (grey, alpha 255); the stages'
-// outputs on the way, for tests and tools: the deform map (vec2 per pixel: source y [mm], gain
-// [dB]; empty when nothing pressed), the sliced grey level (0..255), and the tissue codes at the
-// pixels (when asked for and the volume has labels).
+// outputs on the way, for tests and tools: the deform map (vec2 per entry: source y [mm], gain
+// [dB], map_columns x rows entries, echo::deform_columns; empty when nothing pressed), the sliced
+// grey level (0..255), and the tissue codes at the pixels (when asked for and the volume has labels).
 struct EchoImage {
     std::uint32_t columns = 0, rows = 0;
+    std::uint32_t map_columns = 0;
     std::vector<std::uint32_t> rgba;
-    std::vector<float> map;  // 2 per pixel
+    std::vector<float> map;  // 2 per entry
     std::vector<float> grey;
     std::vector<std::uint8_t> labels;
 };

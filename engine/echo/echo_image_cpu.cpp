@@ -36,14 +36,15 @@ EchoImage render_echo_cpu(const io::Volume& volume, const io::Volume* labels, co
     EchoImage out;
     out.columns = plane.columns;
     out.rows = plane.rows;
+    out.map_columns = k.deform.columns;
     if (!frame.columns.empty()) {
         const TissueTable tissues = labels ? tissue_mechanics(patient) : paper_linear_mechanics();
-        const std::vector<glm::vec2> map = deform_cpu(labels, frame.columns, tissues, k.deform);
+        const std::vector<glm::vec2> map = deform_cpu(labels, deform_profiles(frame, plane, k.deform.columns), tissues, k.deform);
         out.map.resize(2 * map.size());
         for (std::size_t i = 0; i < map.size(); ++i) out.map[2 * i] = map[i].x, out.map[2 * i + 1] = map[i].y;
     }
     SliceOutput sliced = slice_stage_cpu(volume, labels, out.map, k.slice);
-    out.rgba = post_cpu(sliced.grey, out.map, k.post);
+    out.rgba = post_cpu(sliced.grey, sliced.gain, k.post);
     out.grey = std::move(sliced.grey);
     out.labels = std::move(sliced.labels);
     return out;

@@ -57,10 +57,44 @@ double pulse_at(double time_s, double heart_rate_bpm)
     return s * s;
 }
 
-double deform_step_mm(const io::Volume& grid, const ImagePlane& plane)
+namespace {
+
+double finest_voxel_mm(const io::Volume& grid)
 {
-    const double voxel = std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
-    return std::max(plane.pixel_y_mm(), voxel);
+    return std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
+}
+
+}  // namespace
+
+double deform_step_mm(const io::Volume& grid, const ImagePlane& plane) { return std::max(plane.pixel_y_mm(), finest_voxel_mm(grid)); }
+
+std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane)
+{
+    const double across = std::ceil(plane.width_mm / finest_voxel_mm(grid));
+    return std::max(1u, std::uint32_t(std::min(double(plane.columns), across)));
+}
+
+std::vector<ColumnProfile> deform_profiles(const EchoFrame& frame, const ImagePlane& plane, std::uint32_t columns)
+{
+    if (frame.columns.empty()) return {};
+    if (frame.columns.size() != plane.columns)
+        throw std::invalid_argument("echographic image: " + std::to_string(frame.columns.size()) + " column profiles for " +
+                                    std::to_string(plane.columns) + " columns");
+    if (columns == plane.columns) return frame.columns;
+    std::vector<ColumnProfile> out(columns);
+    const double last = double(plane.columns - 1);
+    for (std::uint32_t j = 0; j < columns; ++j) {
+        // deform column j's centre in image columns (both span the same width)
+        const double u = std::clamp((j + 0.5) * double(plane.columns) / columns - 0.5, 0.0, last);
+        const auto left = std::size_t(u);
+        const std::size_t right = std::min(left + 1, std::size_t(plane.columns - 1));
+        const double f = u - double(left);
+        const ColumnProfile& a = frame.columns[left];
+        const ColumnProfile& b = frame.columns[right];
+        out[j].skin_y_mm = float((1 - f) * a.skin_y_mm + f * b.skin_y_mm);
+        out[j].skin_shift_mm = float((1 - f) * a.skin_shift_mm + f * b.skin_shift_mm);
+    }
+    return out;
 }
 
 std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane)
@@ -77,12 +111,14 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
     const glm::mat4 probe_to_index(glm::inverse(index_to_world) * glm::dmat4(frame.face.matrix()));
     const bool warped = !frame.columns.empty();
     const auto px = float(plane.pixel_x_mm()), py = float(plane.pixel_y_mm());
+    const std::uint32_t map_columns = deform_columns(grid, plane);
+    const auto map_px = float(plane.width_mm / map_columns);
 
     KernelParams k{};
     k.deform = {probe_to_index,
-                plane.columns,
+                map_columns,
                 plane.rows,
-                px,
+                map_px,
                 py,
                 float(plane.width_mm),
                 float(plane.depth_mm),
@@ -96,7 +132,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                 float(kLinearProbe.frequency_mhz),
                 labelled ? 0u : DEFORM_PAPER_LINEAR,
                 0u};
-    k.slice = {probe_to_index, plane.columns, plane.rows, px, py, float(plane.width_mm), warped ? SLICE_WARPED : 0u, 0u, 0u};
+    k.slice = {probe_to_index, plane.columns, plane.rows, px, py, float(plane.width_mm), warped ? SLICE_WARPED : 0u, map_columns, map_px};
     k.post.columns = plane.columns;
     k.post.rows = plane.rows;
     k.post.pixel_x_mm = px;

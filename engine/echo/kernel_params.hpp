@@ -27,6 +27,13 @@ struct KernelParams {
 double deform_step_mm(const io::Volume& grid, const ImagePlane& plane);
 // The walk's steps per column the scratch holds.
 std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane);
+// The deform stage's columns across the image: as many as the image's, but no finer than the label
+// grid, for the same reason (a 1024-column image over 0.3 mm labels walks 134 columns). The slice
+// stage reads the map between them, linearly (slice_bindings.h, map_tap).
+std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane);
+// The frame's skin profile at the deform stage's `columns` column centres, linear between the
+// image columns' (empty when the frame presses nothing).
+std::vector<ColumnProfile> deform_profiles(const EchoFrame& frame, const ImagePlane& plane, std::uint32_t columns);
 
 // `grid`: the volume's geometry (its voxels are not read); `labelled`: whether a label map
 // shares its grid (else the paper's linear deformation); `warped`: whether the frame presses.

@@ -1,5 +1,6 @@
-// The CPU twin of the post kernel (compute/post.comp): the same per-pixel maths (post_grey in
-// compute/post_bindings.h), packed as RGBA8 grey with alpha 255.
+// The CPU twin of the post stage, which the slice kernel runs on each sample (compute/slice.comp):
+// the same per-pixel maths (post_grey in compute/post_bindings.h), packed as RGBA8 grey with alpha
+// 255.
 #pragma once
 
 #include <cstdint>
@@ -10,8 +11,8 @@
 
 namespace echosim::echo {
 
-// `grey`: the slice stage's output; `map`: the deform map (2 floats per pixel), read when
-// params.flags has POST_WARPED.
-std::vector<std::uint32_t> post_cpu(std::span<const float> grey, std::span<const float> map, const kernels::PostParams& params);
+// `grey`, `gain`: the slice stage's output (SliceOutput); `gain` is read when params.flags has
+// POST_WARPED.
+std::vector<std::uint32_t> post_cpu(std::span<const float> grey, std::span<const float> gain, const kernels::PostParams& params);
 
 }  // namespace echosim::echo

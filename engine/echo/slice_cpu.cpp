@@ -62,17 +62,27 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
     using namespace kernels;
     const std::size_t n = std::size_t(p.columns) * p.rows;
     const bool warped = (p.flags & SLICE_WARPED) != 0u, want_labels = (p.flags & SLICE_LABELS) != 0u;
-    if (warped && map.size() != 2 * n) throw std::invalid_argument("slice: the deform map does not match the image");
+    if (warped && map.size() != 2 * std::size_t(p.map_columns) * p.rows) throw std::invalid_argument("slice: the deform map does not match the image");
     const std::uint8_t* g = volume.as<std::uint8_t>();
     const std::uint8_t* l = labels ? labels->as<std::uint8_t>() : nullptr;
     const vec3 size(float(volume.size[0]), float(volume.size[1]), float(volume.size[2]));
     SliceOutput out;
     out.grey.resize(n);
+    if (warped) out.gain.resize(n);
     if (want_labels) out.labels.assign(n, 0);
     for (std::uint32_t r = 0; r < p.rows; ++r)
         for (std::uint32_t c = 0; c < p.columns; ++c) {
             const std::size_t i = std::size_t(r) * p.columns + c;
-            const float y = warped ? map[2 * i] : pixel_y(r, p.pixel_y_mm);
+            float y = pixel_y(r, p.pixel_y_mm);
+            if (warped) {
+                const MapTap t = map_tap(c, p);
+                const std::size_t row_start = std::size_t(r) * p.map_columns;
+                const vec2 left(map[2 * (row_start + t.left)], map[2 * (row_start + t.left) + 1]);
+                const vec2 right(map[2 * (row_start + t.right)], map[2 * (row_start + t.right) + 1]);
+                const vec2 m = mix(left, right, t.right_weight);
+                y = m.x;
+                out.gain[i] = m.y;
+            }
             const vec3 index(p.probe_to_index * vec4(pixel_x(c, p.pixel_x_mm, p.width_mm), y, 0.0f, 1.0f));
             if (inside_volume(index, size)) {
                 const vec3 lo = min(floor(index), size - 2.0f), f = index - lo;

@@ -17,12 +17,14 @@ namespace echosim::echo {
 std::vector<std::uint8_t> slice_grey(const io::Volume& volume, const Pose& pose, const ScanSpec& spec);
 std::vector<std::uint8_t> slice_labels(const io::Volume& labels, const Pose& pose, const ScanSpec& spec);
 
-// The CPU twin of the slice kernel (compute/slice.comp): grey 0..255 per pixel, sampled
-// trilinearly (in float, as the sampler does) where the deform map says (params.flags &
-// SLICE_WARPED: `map` holds 2 floats per pixel) or at the pixel's own depth; and, with
-// SLICE_LABELS, the tissue codes at the nearest voxel of `labels` (sharing the volume's grid).
+// The CPU twin of the slice kernel's sampling (compute/slice.comp; its post stage is post_cpu):
+// grey 0..255 per pixel, sampled trilinearly (in float, as the sampler does) where the deform map
+// says (params.flags & SLICE_WARPED: `map` holds 2 floats per map entry, map_columns x rows, read
+// between columns as map_tap says) or at the pixel's own depth; and, with SLICE_LABELS, the tissue
+// codes at the nearest voxel of `labels` (sharing the volume's grid).
 struct SliceOutput {
     std::vector<float> grey;
+    std::vector<float> gain;  // [dB] per pixel, from the map (warped only)
     std::vector<std::uint8_t> labels;
 };
 SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, std::span<const float> map,

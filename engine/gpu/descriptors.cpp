@@ -18,6 +18,7 @@ VkDescriptorType descriptor_type(BindingKind kind)
     case BindingKind::uniform_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case BindingKind::storage_image: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     case BindingKind::sampled_image: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case BindingKind::texel_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     }
     return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
@@ -29,6 +30,7 @@ const char* kind_name(BindingKind kind)
     case BindingKind::uniform_buffer: return "uniform buffer";
     case BindingKind::storage_image: return "storage image";
     case BindingKind::sampled_image: return "sampled image";
+    case BindingKind::texel_buffer: return "texel buffer";
     }
     return "?";
 }
@@ -42,7 +44,7 @@ SlotDescriptors::SlotDescriptors(const Context& ctx, std::span<const BindingKind
     const VkDevice dev = ctx.device();
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings(kinds_.size());
-        std::array<std::uint32_t, 4> per_kind{};  // descriptors of each kind in one set
+        std::array<std::uint32_t, 5> per_kind{};  // descriptors of each kind in one set
         for (std::uint32_t i = 0; i < kinds_.size(); ++i) {
             bindings[i] = {i, descriptor_type(kinds_[i]), 1, stages, nullptr};
             ++per_kind[std::size_t(kinds_[i])];
@@ -99,6 +101,7 @@ void SlotDescriptors::bind(int slot, std::span<const Binding> resources)
                                     std::to_string(kinds_.size()) + " bindings declared");
     std::vector<VkDescriptorBufferInfo> buffers(resources.size());
     std::vector<VkDescriptorImageInfo> images(resources.size());
+    std::vector<VkBufferView> views(resources.size());
     std::vector<VkWriteDescriptorSet> writes(resources.size());
     for (std::size_t i = 0; i < resources.size(); ++i) {
         const Binding& r = resources[i];
@@ -126,6 +129,11 @@ void SlotDescriptors::bind(int slot, std::span<const Binding> resources)
             if (!r.image || !r.sampler) throw std::invalid_argument(where + ": needs an image and a sampler");
             images[i] = {r.sampler->handle(), r.image->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             writes[i].pImageInfo = &images[i];
+            break;
+        case BindingKind::texel_buffer:
+            if (!r.texels) throw std::invalid_argument(where + ": no texel view");
+            views[i] = r.texels->handle();
+            writes[i].pTexelBufferView = &views[i];
             break;
         }
     }

@@ -26,6 +26,7 @@ enum class BindingKind {
     uniform_buffer,  // buffer, read only, small (GLSL `uniform`)
     storage_image,   // image in layout GENERAL, imageLoad/imageStore (GLSL `image2D`, `image3D`)
     sampled_image,   // image in layout SHADER_READ_ONLY_OPTIMAL with a sampler (GLSL `sampler2D`, `sampler3D`)
+    texel_buffer,    // buffer read through a TexelView (GLSL `samplerBuffer`, texelFetch)
 };
 
 // What one binding points at, of the kind declared for it.
@@ -34,11 +35,13 @@ struct Binding {
     const Buffer* buffer = nullptr;
     const Image* image = nullptr;
     const Sampler* sampler = nullptr;
+    const TexelView* texels = nullptr;
 
     static Binding storage(const Buffer& b) { return {BindingKind::storage_buffer, &b, nullptr, nullptr}; }
     static Binding uniform(const Buffer& b) { return {BindingKind::uniform_buffer, &b, nullptr, nullptr}; }
     static Binding storage(const Image& i) { return {BindingKind::storage_image, nullptr, &i, nullptr}; }
     static Binding sampled(const Image& i, const Sampler& s) { return {BindingKind::sampled_image, nullptr, &i, &s}; }
+    static Binding texel(const TexelView& t) { return {BindingKind::texel_buffer, nullptr, nullptr, nullptr, &t}; }
 };
 
 // A descriptor set layout of the declared kinds (set 0 of a pipeline) and one set per frame slot.

@@ -204,6 +204,41 @@ void Sampler::reset()
     sampler_ = VK_NULL_HANDLE;
 }
 
+TexelView::TexelView(const Context& ctx, const Buffer& buffer, VkFormat format, const char* what) : device_(ctx.device())
+{
+    VkFormatProperties props{};
+    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
+    if ((props.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT) == 0)
+        throw VulkanError(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                          std::string(what) + ": reading format " + std::to_string(int(format)) + " as a texel buffer");
+    const VkDeviceSize texels = buffer.size() / texel_bytes(format);
+    if (texels > ctx.limits().maxTexelBufferElements)
+        throw VulkanError(VK_ERROR_FORMAT_NOT_SUPPORTED, std::string(what) + ": a texel buffer of " + std::to_string(texels) +
+                                                             " texels (the device addresses " +
+                                                             std::to_string(ctx.limits().maxTexelBufferElements) + ")");
+    VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    info.buffer = buffer.handle();
+    info.format = format;
+    info.range = VK_WHOLE_SIZE;
+    check(vkCreateBufferView(device_, &info, nullptr, &view_), (std::string("vkCreateBufferView (") + what + ")").c_str());
+}
+
+TexelView& TexelView::operator=(TexelView&& o) noexcept
+{
+    if (this != &o) {
+        reset();
+        device_ = std::exchange(o.device_, VK_NULL_HANDLE);
+        view_ = std::exchange(o.view_, VK_NULL_HANDLE);
+    }
+    return *this;
+}
+
+void TexelView::reset()
+{
+    if (device_ && view_) vkDestroyBufferView(device_, view_, nullptr);
+    view_ = VK_NULL_HANDLE;
+}
+
 std::uint32_t texel_bytes(VkFormat format)
 {
     switch (format) {
@@ -218,6 +253,7 @@ std::uint32_t texel_bytes(VkFormat format)
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_B8G8R8A8_UNORM:
     case VK_FORMAT_B8G8R8A8_SRGB: return 4;
+    case VK_FORMAT_R32G32_SFLOAT: return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
     default: throw std::invalid_argument("texel size of Vulkan format " + std::to_string(int(format)) + " is not known to echosim");
     }

@@ -83,6 +83,28 @@ private:
 
 // How a sampler reads between texels. Every sampler clamps to the edge on all axes and reads
 // normalised coordinates, without mip levels: images and volumes are sampled where they are.
+// A buffer seen as a one-dimensional array of texels of one format, for `texelFetch` from a
+// uniform texel buffer (GLSL `samplerBuffer`): on llvmpipe such a read is one vector gather, where
+// a storage buffer's is a loop over the lanes. Throws naming `what` when the device cannot read
+// the format so, or the buffer holds more texels than a texel buffer may address.
+class TexelView {
+public:
+    TexelView() = default;
+    TexelView(const Context& ctx, const Buffer& buffer, VkFormat format, const char* what);
+    ~TexelView() { reset(); }
+    TexelView(TexelView&& o) noexcept { *this = std::move(o); }
+    TexelView& operator=(TexelView&& o) noexcept;
+    TexelView(const TexelView&) = delete;
+    TexelView& operator=(const TexelView&) = delete;
+
+    VkBufferView handle() const { return view_; }
+
+private:
+    void reset();
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkBufferView view_ = VK_NULL_HANDLE;
+};
+
 enum class Filter { nearest, linear };
 
 class Sampler {

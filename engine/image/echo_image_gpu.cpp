@@ -26,12 +26,6 @@ std::span<const std::byte> bytes_of(const T& value)
     return std::as_bytes(std::span(&value, 1));
 }
 
-void compute_to_compute(VkCommandBuffer cmd)
-{
-    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-}
-
 }  // namespace
 
 EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels)
@@ -58,13 +52,14 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
       plane_(plane),
       patient_(patient),
       max_steps_((echo::check_plane(plane), echo::deform_max_steps(volume_->grid(), plane))),
+      map_columns_(echo::deform_columns(volume_->grid(), plane)),
       tissues_(ctx, sizeof(echo::TissueTable), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible),
       deform_(ctx, kernels::deform_comp, "deform.comp",
               {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
                gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer},
               sizeof(kernels::DeformParams)),
       slice_(ctx, kernels::slice_comp, "slice.comp",
-             {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer,
+             {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::texel_buffer,
               gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
               gpu::BindingKind::uniform_buffer},
              0)
@@ -83,11 +78,13 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     for (int s = 0; s < gpu::kFramesInFlight; ++s) {
         Slot& slot = slots_[std::size_t(s)];
-        slot.profile = gpu::Buffer(ctx, plane_.columns * sizeof(echo::ColumnProfile), storage, gpu::MemoryUse::host_visible);
+        slot.profile = gpu::Buffer(ctx, map_columns_ * sizeof(echo::ColumnProfile), storage, gpu::MemoryUse::host_visible);
         slot.params = gpu::Buffer(ctx, sizeof(kernels::SliceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
         slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
-        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(plane_.columns) * max_steps_ * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
-        slot.map = gpu::Buffer(ctx, pixels * 2 * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
+        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
+        slot.map = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * plane_.rows * 2 * sizeof(float),
+                               storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
+        slot.map_texels = gpu::TexelView(ctx, slot.map, VK_FORMAT_R32G32_SFLOAT, "the deform map");
         slot.grey = gpu::Buffer(ctx, pixels * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.labels = gpu::Buffer(ctx, pixels * sizeof(std::uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.image = gpu::Image(ctx, VkExtent2D{plane_.columns, plane_.rows}, VK_FORMAT_R8_UNORM,
@@ -97,7 +94,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         deform_.bind(s, {gpu::Binding::sampled(volume_->labels(), volume_->nearest()), gpu::Binding::storage(slot.profile),
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map)});
         slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
-                        gpu::Binding::storage(slot.map), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
+                        gpu::Binding::texel(slot.map_texels), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
                         gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params)});
     }
 }
@@ -127,9 +124,11 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     slot.params.write(bytes_of(params));
 
     if (warped && all) {
-        slot.profile.write(std::as_bytes(std::span(frame.columns)));
-        deform_.record(cmd, slot_index, bytes_of(k.deform), gpu::Groups::cover(plane_.columns, DEFORM_GROUP_SIZE));
-        compute_to_compute(cmd);
+        const std::vector<echo::ColumnProfile> profiles = echo::deform_profiles(frame, plane_, map_columns_);
+        slot.profile.write(std::as_bytes(std::span(profiles)));
+        deform_.record(cmd, slot_index, bytes_of(k.deform), gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE));
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
     slice_.record(cmd, slot_index, {},
                   gpu::Groups::cover(VkExtent2D{kernels::slice_words(plane_.columns), plane_.rows}, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}),
@@ -189,7 +188,7 @@ echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFra
     const VkDeviceSize pixels = plane_.pixels();
     const bool warped = !frame.columns.empty(), labels = want_labels && volume_->labelled();
     // one host-visible buffer takes every output back: image, grey, map, labels
-    const VkDeviceSize image_bytes = pixels, grey_bytes = pixels * 4, map_bytes = warped ? pixels * 8 : 0, label_bytes = labels ? pixels * 4 : 0;
+    const VkDeviceSize image_bytes = pixels, grey_bytes = pixels * 4, map_bytes = warped ? slots_[0].map.size() : 0, label_bytes = labels ? pixels * 4 : 0;
     gpu::Buffer readback(ctx, image_bytes + grey_bytes + map_bytes + label_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::host_visible);
     const Slot& slot = slots_[0];
     pool.submit_and_wait([&](VkCommandBuffer cmd) {
@@ -215,6 +214,7 @@ echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFra
     echo::EchoImage out;
     out.columns = plane_.columns;
     out.rows = plane_.rows;
+    out.map_columns = map_columns_;
     const auto* bytes = static_cast<const std::byte*>(readback.mapped());
     out.rgba.resize(pixels);
     for (VkDeviceSize i = 0; i < pixels; ++i) {
@@ -224,7 +224,7 @@ echo::EchoImage EchoImageGpu::render(gpu::CommandPool& pool, const echo::EchoFra
     out.grey.resize(pixels);
     std::memcpy(out.grey.data(), bytes + image_bytes, grey_bytes);
     if (warped) {
-        out.map.resize(2 * pixels);
+        out.map.resize(map_bytes / sizeof(float));
         std::memcpy(out.map.data(), bytes + image_bytes + grey_bytes, map_bytes);
     }
     if (labels) {

@@ -108,6 +108,7 @@ private:
     struct Slot {
         gpu::Buffer profile, params;  // host-visible, written when the slot is recorded
         gpu::Buffer scratch, map, grey, labels;
+        gpu::TexelView map_texels;  // the map as the slice kernel reads it
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
         gpu::Buffer readback;  // host-visible, with enable_readback()
@@ -117,6 +118,7 @@ private:
     echo::PatientCase patient_;
     echo::ScannerSettings scanner_;
     std::uint32_t max_steps_ = 0;
+    std::uint32_t map_columns_ = 0;  // the deform stage's columns (echo::deform_columns)
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
     std::array<Slot, gpu::kFramesInFlight> slots_;
