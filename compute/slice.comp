@@ -43,7 +43,16 @@ void main()
             m = mix(texelFetch(map, int(row_start + t.left)).xy, texelFetch(map, int(row_start + t.right)).xy, t.right_weight);
         }
         vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
-        float grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;
+        float grey = 0.0;
+        if ((FLAGS & SLICE_PACKED) != 0u) {
+            vec3 lo = clamp(floor(index), vec3(0.0), max(size - 2.0, vec3(0.0)));
+            ivec3 at = ivec3(lo);
+            ivec3 far_z = at + ivec3(0, 0, min(1, int(size.z) - 1));  // a volume one voxel deep has no far slice
+            float sample_ = packed_trilinear(texelFetch(volume, at, 0), texelFetch(volume, far_z, 0), index - lo);
+            grey = inside_volume(index, size) ? sample_ * 255.0 : 0.0;
+        } else {
+            grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;
+        }
         if ((FLAGS & SLICE_GREY) != 0u) grey_out[i] = grey;
         if ((FLAGS & SLICE_LABELS) != 0u) {
             ivec3 v = ivec3(floor(index + 0.5));

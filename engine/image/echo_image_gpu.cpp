@@ -1,6 +1,8 @@
 #include "image/echo_image_gpu.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -12,12 +14,36 @@ namespace {
 
 constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
-gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat format)
+gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat format, std::span<const std::byte> texels)
 {
     gpu::Image image(pool.context(), VkExtent3D{std::uint32_t(v.size[0]), std::uint32_t(v.size[1]), std::uint32_t(v.size[2])}, format,
                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    gpu::upload_image(pool, image, std::as_bytes(std::span(v.data)), kRead);
+    gpu::upload_image(pool, image, texels, kRead);
     return image;
+}
+
+// The largest packed volume made [bytes]: four times the voxels, in a CPU device's memory (the
+// host's); beyond it the R8 volume and the trilinear sampler serve.
+constexpr std::uint64_t kMaxPackedBytes = std::uint64_t(2) << 30;
+
+// The volume as slice_bindings.h's packed texels: (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1) at
+// each depth, the far neighbours clamped to the edge.
+std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
+{
+    const std::size_t nx = v.size[0], ny = v.size[1], nz = v.size[2];
+    const auto* g = v.as<std::uint8_t>();
+    std::vector<std::uint32_t> out(nx * ny * nz);
+    for (std::size_t z = 0; z < nz; ++z)
+        for (std::size_t y = 0; y < ny; ++y) {
+            const std::uint8_t* row = g + v.index(0, y, z);
+            const std::uint8_t* next = g + v.index(0, std::min(y + 1, ny - 1), z);
+            std::uint32_t* dst = out.data() + (z * ny + y) * nx;
+            for (std::size_t x = 0; x < nx; ++x) {
+                const std::size_t x1 = std::min(x + 1, nx - 1);
+                dst[x] = std::uint32_t(row[x]) | std::uint32_t(row[x1]) << 8 | std::uint32_t(next[x]) << 16 | std::uint32_t(next[x1]) << 24;
+            }
+        }
+    return out;
 }
 
 template <class T>
@@ -28,7 +54,7 @@ std::span<const std::byte> bytes_of(const T& value)
 
 }  // namespace
 
-EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels)
+EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels, GreyLayout layout)
     : labelled_(labels != nullptr),
       linear_(pool.context(), gpu::Filter::linear),
       nearest_(pool.context(), gpu::Filter::nearest)
@@ -37,12 +63,20 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
     grid_.size = volume.size;
     grid_.directions = volume.directions;
     grid_.origin = volume.origin;
-    grey_ = volume_image(pool, volume, VK_FORMAT_R8_UNORM);
+    packed_ = layout == GreyLayout::packed ||
+              (layout == GreyLayout::best && pool.context().device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+               volume.voxel_count() * 4 <= kMaxPackedBytes);
+    if (packed_) {
+        const std::vector<std::uint32_t> texels = pack_neighbours(volume);
+        grey_ = volume_image(pool, volume, VK_FORMAT_R8G8B8A8_UNORM, std::as_bytes(std::span(texels)));
+    } else {
+        grey_ = volume_image(pool, volume, VK_FORMAT_R8_UNORM, std::as_bytes(std::span(volume.data)));
+    }
     if (labels) {
-        labels_ = volume_image(pool, *labels, VK_FORMAT_R8_UINT);
+        labels_ = volume_image(pool, *labels, VK_FORMAT_R8_UINT, std::as_bytes(std::span(labels->data)));
     } else {
         io::Volume none = io::make_volume({1, 1, 1}, io::VoxelType::uint8);
-        labels_ = volume_image(pool, none, VK_FORMAT_R8_UINT);
+        labels_ = volume_image(pool, none, VK_FORMAT_R8_UINT, std::as_bytes(std::span(none.data)));
     }
 }
 
@@ -118,6 +152,7 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     k.deform.max_steps = max_steps_;
     if (want_labels && volume_->labelled()) k.slice.flags |= SLICE_LABELS;
     if (all) k.slice.flags |= SLICE_POST;
+    if (volume_->packed()) k.slice.flags |= SLICE_PACKED;
     if (want_grey) k.slice.flags |= SLICE_GREY;
     // the slot's previous frame is done (the caller waited for it), so its host-visible inputs are free
     const kernels::SliceFrame params{k.slice, k.post};

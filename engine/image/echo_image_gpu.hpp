@@ -44,15 +44,22 @@
 namespace echosim::image {
 
 // A volume and its labels as the kernels sample them: uint8 grey levels (UNORM8, trilinear) and
-// uint8 tissue codes (nearest) on the same grid. Without labels a one-voxel map stands in and the
+// uint8 tissue codes (nearest) on the same grid. On a CPU device (lavapipe) the grey levels are
+// packed with their neighbours, four to a texel (slice_bindings.h, SLICE_PACKED), while that takes
+// at most 2 GiB: four times the memory, for a slice about twice as fast there. Without labels a one-voxel map stands in and the
 // deformation is the paper's linear one. Throws (std::invalid_argument, gpu::VulkanError) naming
 // what does not fit: voxel types, grids, a size the device cannot hold.
+// How the grey levels are held: as the device suits best (packed on a CPU device within the
+// budget, else R8), or one of the two whatever the device (tests run both against the CPU twin).
+enum class GreyLayout { best, sampler, packed };
+
 class EchoVolumeGpu {
 public:
-    EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels);
+    EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels, GreyLayout layout = GreyLayout::best);
 
     const io::Volume& grid() const { return grid_; }  // the geometry (no voxels)
     bool labelled() const { return labelled_; }
+    bool packed() const { return packed_; }  // grey() holds packed neighbours (RGBA8), not R8
     const gpu::Image& grey() const { return grey_; }
     const gpu::Image& labels() const { return labels_; }
     const gpu::Sampler& linear() const { return linear_; }
@@ -61,6 +68,7 @@ public:
 private:
     io::Volume grid_;
     bool labelled_ = false;
+    bool packed_ = false;
     gpu::Image grey_, labels_;
     gpu::Sampler linear_, nearest_;
 };

@@ -73,20 +73,25 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
         gpu::Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
         gpu::CommandPool pool(ctx);
-        const auto labelled = std::make_shared<const EchoVolumeGpu>(pool, v.grey, &v.labels);
-        const auto bare = std::make_shared<const EchoVolumeGpu>(pool, v.grey, nullptr);
-        EchoImageGpu with_labels(ctx, labelled, s.image_plane(), s.patient());
-        EchoImageGpu without(ctx, bare, s.image_plane(), s.patient());
-        with_labels.scanner() = scanner;
-        without.scanner() = scanner;
         const auto cpu = [&](const echo::EchoFrame& f, bool labels) {
             return echo::render_echo_cpu(v.grey, labels ? &v.labels : nullptr, s.image_plane(), f, scanner, s.patient(), labels);
         };
-        expect_twins(with_labels.render(pool, rest, true), cpu(rest, true), "at rest");
-        expect_twins(with_labels.render(pool, pressed, true), cpu(pressed, true), "pressed 12 mm");
-        expect_twins(without.render(pool, pressed), cpu(pressed, false), "pressed, no labels");
-        // the same frame twice: the GPU is deterministic
-        EXPECT_EQ(with_labels.render(pool, pressed).rgba, with_labels.render(pool, pressed).rgba);
+        // both ways of holding the grey levels: the sampler's (a GPU's) and the packed one (lavapipe's)
+        for (const GreyLayout layout : {GreyLayout::sampler, GreyLayout::packed}) {
+            SCOPED_TRACE(layout == GreyLayout::packed ? "packed volume" : "R8 volume, trilinear sampler");
+            const auto labelled = std::make_shared<const EchoVolumeGpu>(pool, v.grey, &v.labels, layout);
+            const auto bare = std::make_shared<const EchoVolumeGpu>(pool, v.grey, nullptr, layout);
+            ASSERT_EQ(labelled->packed(), layout == GreyLayout::packed);
+            EchoImageGpu with_labels(ctx, labelled, s.image_plane(), s.patient());
+            EchoImageGpu without(ctx, bare, s.image_plane(), s.patient());
+            with_labels.scanner() = scanner;
+            without.scanner() = scanner;
+            expect_twins(with_labels.render(pool, rest, true), cpu(rest, true), "at rest");
+            expect_twins(with_labels.render(pool, pressed, true), cpu(pressed, true), "pressed 12 mm");
+            expect_twins(without.render(pool, pressed), cpu(pressed, false), "pressed, no labels");
+            // the same frame twice: the GPU is deterministic
+            EXPECT_EQ(with_labels.render(pool, pressed).rgba, with_labels.render(pool, pressed).rgba);
+        }
     }
     EXPECT_EQ(messages->load(), 0u);
 }
