@@ -50,7 +50,8 @@ KERNEL_FN float tgc_db(float y, PostParams p)
 // What a row of the image shares: its gain before the deform stage's [dB], how many columns from
 // the left its depth tick covers (0: none), and how far from the right edge the focus' triangle
 // reaches on it [mm] (0 or less: not on this row). The per-pixel part (post_pixel) is then a few
-// operations, so a kernel that works a row segment at a time computes this once.
+// operations; the slice kernel reads the rows' from a table its dispatcher fills (computed in the
+// kernel, once per four pixels, this cost llvmpipe half the frame).
 struct PostRow {
     float db_offset;
     float tick_columns;

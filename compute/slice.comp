@@ -18,6 +18,7 @@ layout(std430, binding = SLICE_GREY_BINDING) writeonly buffer Grey { float grey_
 layout(std430, binding = SLICE_LABEL_OUT_BINDING) writeonly buffer LabelOut { uint label_out[]; };
 layout(std430, binding = SLICE_DISPLAY_BINDING) writeonly buffer Display { uint display[]; };
 layout(std140, binding = SLICE_FRAME_BINDING) uniform Frame { SliceFrame frame; };
+layout(binding = SLICE_ROWS_BINDING) uniform samplerBuffer post_rows;
 
 void main()
 {
@@ -28,7 +29,8 @@ void main()
     const bool warped = (FLAGS & SLICE_WARPED) != 0u, post = (FLAGS & SLICE_POST) != 0u;
     vec3 size = vec3(textureSize(volume, 0));
     ivec3 label_size = textureSize(labels, 0);
-    PostRow row = post_row(r, frame.post);
+    vec4 row_texel = texelFetch(post_rows, int(r));
+    PostRow row = PostRow(row_texel.x, row_texel.y, row_texel.z, row_texel.w);
     float y = pixel_y(r, s.pixel_y_mm);
     uint packed = 0u;
     // a row's last word may reach past its last column: those bytes repeat that column (the copy

@@ -26,6 +26,7 @@ namespace echosim::kernels {
 #define SLICE_LABEL_OUT_BINDING 4  // uint per pixel: tissue code (written when SLICE_LABELS)
 #define SLICE_DISPLAY_BINDING 5    // uint per SLICE_RUN pixels: displayed grey bytes, first pixel lowest; slice_words(columns) a row
 #define SLICE_FRAME_BINDING 6      // uniform: SliceFrame
+#define SLICE_ROWS_BINDING 7       // texel buffer, RGBA32F: post_row(r) of each row (post_bindings.h), made by the host
 
 #define SLICE_WARPED 1u  // sample where the deform map says, not at the pixel's own depth
 #define SLICE_LABELS 2u  // also write the labels

@@ -95,14 +95,14 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
       slice_(ctx, kernels::slice_comp, "slice.comp",
              {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::texel_buffer,
               gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
-              gpu::BindingKind::uniform_buffer},
+              gpu::BindingKind::uniform_buffer, gpu::BindingKind::texel_buffer},
              0)
 {
     static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
                       DEFORM_MAP_BINDING == 4,
                   "deform bindings in the order declared above");
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
-                      SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6,
+                      SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7,
                   "slice bindings in the order declared above");
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
@@ -114,6 +114,9 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         Slot& slot = slots_[std::size_t(s)];
         slot.profile = gpu::Buffer(ctx, map_columns_ * sizeof(echo::ColumnProfile), storage, gpu::MemoryUse::host_visible);
         slot.params = gpu::Buffer(ctx, sizeof(kernels::SliceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
+        slot.rows = gpu::Buffer(ctx, VkDeviceSize(plane_.rows) * sizeof(kernels::PostRow), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                gpu::MemoryUse::host_visible);
+        slot.row_texels = gpu::TexelView(ctx, slot.rows, VK_FORMAT_R32G32B32A32_SFLOAT, "the image rows' post parameters");
         slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
         slot.map = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * plane_.rows * 2 * sizeof(float),
@@ -129,7 +132,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map)});
         slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
                         gpu::Binding::texel(slot.map_texels), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
-                        gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params)});
+                        gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params), gpu::Binding::texel(slot.row_texels)});
     }
 }
 
@@ -157,6 +160,8 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     // the slot's previous frame is done (the caller waited for it), so its host-visible inputs are free
     const kernels::SliceFrame params{k.slice, k.post};
     slot.params.write(bytes_of(params));
+    auto* rows = static_cast<kernels::PostRow*>(slot.rows.mapped());
+    for (std::uint32_t r = 0; r < plane_.rows; ++r) rows[r] = kernels::post_row(r, k.post);
 
     if (warped && all) {
         const std::vector<echo::ColumnProfile> profiles = echo::deform_profiles(frame, plane_, map_columns_);

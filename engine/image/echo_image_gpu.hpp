@@ -114,7 +114,8 @@ private:
     void record_frame(VkCommandBuffer cmd, int slot, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels,
                       bool want_grey, Stages stages);
     struct Slot {
-        gpu::Buffer profile, params;  // host-visible, written when the slot is recorded
+        gpu::Buffer profile, params, rows;  // host-visible, written when the slot is recorded
+        gpu::TexelView row_texels;  // rows, as the slice kernel reads them
         gpu::Buffer scratch, map, grey, labels;
         gpu::TexelView map_texels;  // the map as the slice kernel reads it
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
