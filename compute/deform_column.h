@@ -24,6 +24,10 @@ void deform_column(uint c, DeformParams p)
     //    share of the inflow below) and (0, 0, closure, gain [dB]) for a lumen step.
     float closed = 0.0f;  // [mm]
     bool closing = false;
+    // 2. (in the same walk) the solids compress under the probe's pressure as it reaches them (the
+    //    paper's linear deformation has no pressure law: its column takes the shift alone)
+    float stress = linear ? 0.0f : p.skin_pressure_kpa;
+    float pressed = 0.0f;  // [mm]
     for (uint k = 0u; k < steps; ++k) {
         float depth = (float(k) + 0.5f) * h;
         vec4 at = p.probe_to_index * vec4(x, skin_y + depth, 0.0f, 1.0f);
@@ -32,16 +36,9 @@ void deform_column(uint c, DeformParams p)
         float closure = lumen_closure(t, p.skin_pressure_kpa * influence, p.pulse);
         closed += closure * h;
         closing = closing || closure > 0.0f;
-        scratch_store(base + k, closure != 0.0f ? vec4(0.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
-                                                : vec4(t.compliance * influence, t.max_strain, 0.0f, 1.0f));
-    }
-
-    // 2. the solids compress under the probe's pressure as it reaches them (the paper's linear
-    //    deformation has no pressure law: its column takes the shift alone)
-    float stress = linear ? 0.0f : p.skin_pressure_kpa;
-    float pressed = 0.0f;  // [mm]
-    for (uint k = 0u; k < steps; ++k) {
-        vec4 w = scratch_load(base + k);
+        vec4 w = closure != 0.0f ? vec4(0.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
+                                 : vec4(t.compliance * influence, t.max_strain, 0.0f, 1.0f);
+        scratch_store(base + k, w);
         if (w.z == 0.0f) pressed += solid_strain(w.x, w.y, stress) * h;
     }
 

@@ -66,11 +66,14 @@ double finest_voxel_mm(const io::Volume& grid)
 
 }  // namespace
 
-double deform_step_mm(const io::Volume& grid, const ImagePlane& plane) { return std::max(plane.pixel_y_mm(), finest_voxel_mm(grid)); }
+double deform_step_mm(const io::Volume& grid, const ImagePlane& plane)
+{
+    return std::max({plane.pixel_y_mm(), finest_voxel_mm(grid), kDeformResolutionMm});
+}
 
 std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane)
 {
-    const double across = std::ceil(plane.width_mm / finest_voxel_mm(grid));
+    const double across = std::ceil(plane.width_mm / std::max(finest_voxel_mm(grid), kDeformResolutionMm));
     return std::max(1u, std::uint32_t(std::min(double(plane.columns), across)));
 }
 

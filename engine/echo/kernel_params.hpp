@@ -22,14 +22,19 @@ struct KernelParams {
     kernels::PostParams post;
 };
 
+// The finest the deform stage resolves the tissue [mm], down a column and across the image: the
+// deformation is smooth but at the lumens' edges, which 0.2 mm places within a few pixels of a
+// 1024-row image; finer labels (0.1 mm) would cost the walk four times as much for that.
+inline constexpr double kDeformResolutionMm = 0.2;
 // The deform stage's step down a column [mm]: no finer than a pixel, nor than the label grid (the
-// labels are read at the nearest voxel: a finer walk reads the same voxel twice).
+// labels are read at the nearest voxel: a finer walk reads the same voxel twice), nor than
+// kDeformResolutionMm.
 double deform_step_mm(const io::Volume& grid, const ImagePlane& plane);
 // The walk's steps per column the scratch holds.
 std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane);
 // The deform stage's columns across the image: as many as the image's, but no finer than the label
-// grid, for the same reason (a 1024-column image over 0.3 mm labels walks 134 columns). The slice
-// stage reads the map between them, linearly (slice_bindings.h, map_tap).
+// grid nor kDeformResolutionMm, for the same reasons (a 1024-column image over 0.3 mm labels walks
+// 134 columns). The slice stage reads the map between them, linearly (slice_bindings.h, map_tap).
 std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane);
 // The frame's skin profile at the deform stage's `columns` column centres, linear between the
 // image columns' (empty when the frame presses nothing).
