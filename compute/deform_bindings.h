@@ -36,7 +36,9 @@
 namespace echosim::kernels {
 #endif
 
-#define DEFORM_GROUP_SIZE 32
+// a column an invocation, and only a few hundred columns (deform_columns): small groups share them
+// evenly among lavapipe's threads (a group runs on one), which 32 did not (5 groups on 2 threads)
+#define DEFORM_GROUP_SIZE 8
 #define DEFORM_LABELS_BINDING 0   // usampler3D: tissue codes (a 1-voxel map of 0 without labels)
 #define DEFORM_PROFILE_BINDING 1  // vec2 per column: (skin_y [mm], skin_shift [mm])
 #define DEFORM_TISSUES_BINDING 2  // uniform: TissueMechanics per tissue code
