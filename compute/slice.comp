@@ -4,9 +4,9 @@
 #include "slice_bindings.h"
 
 // The slice stage, with the post stage on each sample (slice_bindings.h): one invocation per
-// SLICE_RUN pixels of a row. The grey volume is sampled through a linear sampler (the hardware's
-// trilinear filter) at normalised coordinates (index + 0.5) / size; the labels share the volume's
-// grid and are fetched at the nearest voxel.
+// SLICE_RUN pixels of a row. The grey volume is sampled trilinearly: through a linear sampler (the
+// hardware's filter) at normalised coordinates (index + 0.5) / size, or from packed neighbours
+// (SLICE_PACKED); the labels share the volume's grid and are fetched at the nearest voxel.
 layout(local_size_x = SLICE_GROUP_X, local_size_y = SLICE_GROUP_Y) in;
 // The SliceParams flags this pipeline was made for (its dispatcher sets them from the frame's
 // params): a constant, so the outputs and inputs switched off are compiled out, not masked.

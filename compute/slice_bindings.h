@@ -41,7 +41,7 @@ struct SliceParams {
     float pixel_x_mm;
     float pixel_y_mm;
     float width_mm;
-    uint flags;  // SLICE_WARPED | SLICE_LABELS | SLICE_GREY | SLICE_POST
+    uint flags;  // SLICE_WARPED | SLICE_LABELS | SLICE_GREY | SLICE_POST | SLICE_PACKED: the kernel's variant
     uint map_columns;      // the deform map's columns across the same width (deform_bindings.h)
     float map_pixel_x_mm;  // and their spacing [mm]
 };

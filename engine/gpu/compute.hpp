@@ -65,6 +65,9 @@ public:
     // per-lane loops, where a constant removes them. Each variant's pipeline is made the first
     // time it is recorded (a kernel is recorded from one thread at a time).
     void record(VkCommandBuffer cmd, int slot, std::span<const std::byte> push, Groups groups, std::uint32_t variant = 0) const;
+    // Makes variant `value`'s pipeline now, so its first record() does not pay for it (a frame's
+    // worth of time on lavapipe, which compiles the shader then).
+    void prepare(std::uint32_t value) const { variant(value); }
 
 private:
     const Context& ctx_;

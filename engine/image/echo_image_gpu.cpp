@@ -104,6 +104,10 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
                       SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7,
                   "slice bindings in the order declared above");
+    // the live frames' variants, pressed and not, made now rather than at the first frame of each
+    const std::uint32_t live = SLICE_POST | (volume_->packed() ? SLICE_PACKED : 0u);
+    slice_.prepare(live);
+    slice_.prepare(live | SLICE_WARPED);
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
