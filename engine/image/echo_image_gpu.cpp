@@ -111,6 +111,13 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
+    // the displayed bytes are sRGB-encoded grey: as R8_SRGB the panel's sampler decodes them (a
+    // table), where as R8_UNORM its shader must (render/image_panel_pass.hpp); the bytes are the same
+    VkFormatProperties srgb{};
+    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), VK_FORMAT_R8_SRGB, &srgb);
+    constexpr VkFormatFeatureFlags needed =
+        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
+    const VkFormat display_format = (srgb.optimalTilingFeatures & needed) == needed ? VK_FORMAT_R8_SRGB : VK_FORMAT_R8_UNORM;
     const VkDeviceSize pixels = plane_.pixels();
     const VkDeviceSize display_bytes = VkDeviceSize(kernels::slice_words(plane_.columns)) * 4 * plane_.rows;
     constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -128,7 +135,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         slot.map_texels = gpu::TexelView(ctx, slot.map, VK_FORMAT_R32G32_SFLOAT, "the deform map");
         slot.grey = gpu::Buffer(ctx, pixels * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.labels = gpu::Buffer(ctx, pixels * sizeof(std::uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
-        slot.image = gpu::Image(ctx, VkExtent2D{plane_.columns, plane_.rows}, VK_FORMAT_R8_UNORM,
+        slot.image = gpu::Image(ctx, VkExtent2D{plane_.columns, plane_.rows}, display_format,
                                 VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                 VK_IMAGE_ASPECT_COLOR_BIT,
                                 {VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_ONE});

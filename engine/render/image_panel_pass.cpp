@@ -32,19 +32,37 @@ VkRect2D panel_pixels(const PanelRect& rect, VkExtent2D extent)
             {std::uint32_t(std::max<std::int64_t>(0, x1 - x0)), std::uint32_t(std::max<std::int64_t>(0, y1 - y0))}};
 }
 
+namespace {
+
+// The panel's pipeline: no vertex buffers (the vertex shader makes the quad's corners from their
+// index), opaque (the panel replaces the scene under it); `sampler_decodes`: for sRGB images.
+VkPipeline make_panel(const gpu::Context& ctx, VkPipelineLayout layout, VkFormat color_format, bool sampler_decodes)
+{
+    const VkBool32 decodes = sampler_decodes ? VK_TRUE : VK_FALSE;
+    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+    const VkSpecializationInfo specialization{1, &entry, sizeof(decodes), &decodes};
+    GraphicsPipelineDesc desc;
+    desc.name = "panel";
+    desc.vertex_spirv = shaders::panel_vert;
+    desc.fragment_spirv = shaders::panel_frag;
+    desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+    desc.color_format = color_format;
+    desc.fragment_specialization = &specialization;
+    return create_graphics_pipeline(ctx.device(), layout, desc);
+}
+
+bool is_srgb(VkFormat f)
+{
+    return f == VK_FORMAT_R8_SRGB || f == VK_FORMAT_R8G8_SRGB || f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB;
+}
+
+}  // namespace
+
 ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, PanelRect rect)
     : ctx_(ctx), color_format_(color_format), rect_(rect), descriptors_(ctx, kBindings, VK_SHADER_STAGE_FRAGMENT_BIT, "image panel"),
-      pipeline_(ctx.device(), descriptors_.layout(), {}, "panel", [&](VkPipelineLayout layout) {
-          // no vertex buffers: the vertex shader makes the quad's corners from their index; opaque:
-          // the panel replaces the scene under it
-          GraphicsPipelineDesc desc;
-          desc.name = "panel";
-          desc.vertex_spirv = shaders::panel_vert;
-          desc.fragment_spirv = shaders::panel_frag;
-          desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
-          desc.color_format = color_format;
-          return create_graphics_pipeline(ctx.device(), layout, desc);
-      })
+      pipeline_(ctx.device(), descriptors_.layout(), {}, "panel", [&](VkPipelineLayout layout) { return make_panel(ctx, layout, color_format, false); }),
+      srgb_pipeline_(ctx.device(), descriptors_.layout(), {}, "panel (sRGB image)",
+                     [&](VkPipelineLayout layout) { return make_panel(ctx, layout, color_format, true); })
 {
 }
 
@@ -88,9 +106,10 @@ void ImagePanelPass::record(const gpu::PassContext& frame)
     const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(frame.cmd, 0, 1, &vp);
     vkCmdSetScissor(frame.cmd, 0, 1, &area);
-    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
+    const gpu::Pipeline& pipeline = is_srgb(image_->format()) ? srgb_pipeline_ : pipeline_;
+    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
     const VkDescriptorSet set = descriptors_.set(frame.slot);
-    vkCmdBindDescriptorSets(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), PANEL_IMAGE_SET, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), PANEL_IMAGE_SET, 1, &set, 0, nullptr);
     vkCmdDraw(frame.cmd, PANEL_VERTEX_COUNT, 1, 0, 0);
     vkCmdEndRendering(frame.cmd);
 }

@@ -3,8 +3,9 @@
 // the image, opaque, through the sampler given (nearest shows the pixels as they are, linear
 // smooths an image smaller than its panel).
 //
-// The image: 2-D, RGBA8 display values (sRGB-encoded grey levels, as PNGs and scanners have them;
-// the target shows those very bytes), in layout SHADER_READ_ONLY_OPTIMAL, its last write made
+// The image: 2-D, 8-bit display values (sRGB-encoded grey levels, as PNGs and scanners have them;
+// the target shows those very bytes) in a UNORM format, which the panel's shader decodes, or an
+// sRGB one, which the sampler decodes (cheaper on lavapipe), in layout SHADER_READ_ONLY_OPTIMAL, its last write made
 // visible to fragment shaders by whoever wrote it (upload_image does; a compute pass of the frame
 // puts its own barrier after its dispatch).
 //
@@ -74,7 +75,8 @@ private:
     const gpu::Sampler* sampler_ = nullptr;
     std::array<Shown, gpu::kFramesInFlight> bound_{};  // per slot
     gpu::SlotDescriptors descriptors_;
-    gpu::Pipeline pipeline_;  // on descriptors_' layout: declared after it
+    gpu::Pipeline pipeline_;       // on descriptors_' layout: declared after it
+    gpu::Pipeline srgb_pipeline_;  // for images of an sRGB format, which the sampler decodes
 };
 
 }  // namespace echosim::render

@@ -92,9 +92,9 @@ struct RandomImage {
         const std::uint8_t* t = &bytes[(std::size_t(j) * kImage.width + i) * 4];
         return Texel{t[0], t[1], t[2], t[3]};
     }
-    gpu::Image upload(gpu::CommandPool& commands) const
+    gpu::Image upload(gpu::CommandPool& commands, VkFormat format = VK_FORMAT_R8G8B8A8_UNORM) const
     {
-        gpu::Image image(commands.context(), kImage, VK_FORMAT_R8G8B8A8_UNORM,
+        gpu::Image image(commands.context(), kImage, format,
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
         gpu::upload_image(commands, image, std::as_bytes(std::span(bytes)));
         return image;
@@ -144,6 +144,29 @@ TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
         // the scene was there before: the leg and the probe cover the right of the default view
         EXPECT_LT(c.inside_like_scene, int(kPixels.extent.width * kPixels.extent.height) / 50);
     }
+}
+
+// The same bytes in an sRGB format, which the sampler decodes instead of the panel's shader (the
+// echographic image is R8_SRGB): the target shows the same bytes.
+TEST(ImagePanel, ShowsAnSrgbImageAsItsBytes)
+{
+    const RandomImage texel(11);
+
+    app::DefaultScene scene;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    io::RgbaImage scene_only, frame;
+    {
+        PanelGpu rig(scene);
+        messages = rig.ctx.validation_counter();
+        const gpu::Image image = texel.upload(rig.commands, VK_FORMAT_R8G8B8A8_SRGB);
+        rig.panel.show(image, rig.nearest);
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
+        rig.presenter.render(gpu::FramePasses{&rig.scene_pass, &rig.panel}, &frame);
+    }
+    EXPECT_EQ(messages->load(), 0u);
+    const PixelCheck c = check(frame, scene_only, texel);
+    EXPECT_EQ(c.outside_changed, 0);
+    EXPECT_EQ(c.inside_wrong, 0) << "pixels of the panel unlike the sRGB image's bytes";
 }
 
 TEST(ImagePanel, EachFrameShowsTheImageShownBeforeIt)
