@@ -56,26 +56,27 @@ struct PostRow {
     float db_offset;
     float tick_columns;
     float focus_reach_mm;
-    float y_mm;
+    float pad;  // a row is one RGBA32F texel of the slice kernel's table
 };
 
 KERNEL_FN PostRow post_row(uint r, PostParams p)
 {
+    float y = pixel_y(r, p.pixel_y_mm);
     PostRow row;
-    row.y_mm = pixel_y(r, p.pixel_y_mm);
-    row.db_offset = p.gain_db + tgc_db(row.y_mm, p);
+    row.db_offset = p.gain_db + tgc_db(y, p);
     row.tick_columns = 0.0f;
     row.focus_reach_mm = 0.0f;
+    row.pad = 0.0f;
     if ((p.flags & POST_MARKERS) == 0u) return row;
     float thick = max(p.pixel_y_mm, p.depth_mm / 300.0f);  // [mm] a tick's height
-    float tick = floor(row.y_mm / 5.0f + 0.5f) * 5.0f;
-    if (tick > 0.0f && tick < p.depth_mm && abs(row.y_mm - tick) < 0.5f * thick) {
+    float tick = floor(y / 5.0f + 0.5f) * 5.0f;
+    if (tick > 0.0f && tick < p.depth_mm && abs(y - tick) < 0.5f * thick) {
         bool major = mod(tick, 10.0f) < 0.5f;
         row.tick_columns = float(p.columns) * (major ? 0.03f : 0.015f) + 1.0f;
     }
     // the triangle: half height `size` [mm] at the right edge, narrowing to a point 2 size in
     float size = p.depth_mm / 80.0f;
-    row.focus_reach_mm = 2.0f * (size - abs(row.y_mm - p.focus_mm));
+    row.focus_reach_mm = 2.0f * (size - abs(y - p.focus_mm));
     return row;
 }
 

@@ -28,7 +28,7 @@ io::Volume image_volume(const echo::EchoImage& image, const echo::ImagePlane& pl
 {
     io::Volume v = io::make_volume({image.columns, image.rows, 1}, io::VoxelType::uint8);
     for (std::size_t i = 0; i < image.rgba.size(); ++i) v.data[i] = std::uint8_t(image.rgba[i] & 0xffu);
-    const double thickness = std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
+    const double thickness = grid.finest_spacing_mm();
     const glm::dmat4 to_world = echo::pixel_to_world(plane, face);
     v.directions = glm::dmat3(glm::dvec3(to_world[0]), glm::dvec3(to_world[1]), glm::dvec3(to_world[2]) * thickness);
     v.origin = glm::dvec3(to_world[3]);

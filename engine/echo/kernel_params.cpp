@@ -57,23 +57,14 @@ double pulse_at(double time_s, double heart_rate_bpm)
     return s * s;
 }
 
-namespace {
-
-double finest_voxel_mm(const io::Volume& grid)
-{
-    return std::min({glm::length(grid.directions[0]), glm::length(grid.directions[1]), glm::length(grid.directions[2])});
-}
-
-}  // namespace
-
 double deform_step_mm(const io::Volume& grid, const ImagePlane& plane)
 {
-    return std::max({plane.pixel_y_mm(), finest_voxel_mm(grid), kDeformResolutionMm});
+    return std::max({plane.pixel_y_mm(), grid.finest_spacing_mm(), kDeformResolutionMm});
 }
 
 std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane)
 {
-    const double across = std::ceil(plane.width_mm / std::max(finest_voxel_mm(grid), kDeformResolutionMm));
+    const double across = std::ceil(plane.width_mm / std::max(grid.finest_spacing_mm(), kDeformResolutionMm));
     return std::max(1u, std::uint32_t(std::min(double(plane.columns), across)));
 }
 

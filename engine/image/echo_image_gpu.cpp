@@ -156,9 +156,8 @@ void EchoImageGpu::record(VkCommandBuffer cmd, int slot_index, const echo::EchoF
 void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo::EchoFrame& frame, VkImageLayout final_layout,
                                 bool want_labels, bool want_grey, Stages stages)
 {
-    if (!frame.columns.empty() && frame.columns.size() != plane_.columns)
-        throw std::invalid_argument("echographic image: " + std::to_string(frame.columns.size()) + " column profiles for " +
-                                    std::to_string(plane_.columns) + " columns");
+    // first, so a frame whose profiles do not match the plane throws before anything is written
+    const std::vector<echo::ColumnProfile> profiles = echo::deform_profiles(frame, plane_, map_columns_);
     Slot& slot = slots_[std::size_t(slot_index)];
     const bool warped = !frame.columns.empty();
     const bool all = stages == Stages::all;
@@ -175,7 +174,6 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     for (std::uint32_t r = 0; r < plane_.rows; ++r) rows[r] = kernels::post_row(r, k.post);
 
     if (warped && all) {
-        const std::vector<echo::ColumnProfile> profiles = echo::deform_profiles(frame, plane_, map_columns_);
         slot.profile.write(std::as_bytes(std::span(profiles)));
         deform_.record(cmd, slot_index, bytes_of(k.deform), gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE));
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

@@ -175,6 +175,11 @@ const char* to_string(VoxelType type)
 
 glm::dvec3 Volume::world_to_index(const glm::dvec3& world) const { return glm::inverse(directions) * (world - origin); }
 
+double Volume::finest_spacing_mm() const
+{
+    return std::min({glm::length(directions[0]), glm::length(directions[1]), glm::length(directions[2])});
+}
+
 void Volume::check_type(VoxelType wanted) const
 {
     if (wanted != type)

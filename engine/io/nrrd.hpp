@@ -92,6 +92,8 @@ struct Volume {
     // glm::inverse(directions) out of loops over many points.
     glm::dvec3 index_to_world(const glm::dvec3& ijk) const { return origin + directions * ijk; }
     glm::dvec3 world_to_index(const glm::dvec3& world) const;
+    // The smallest voxel step along any of the three axes [mm].
+    double finest_spacing_mm() const;
 
 private:
     void check_type(VoxelType wanted) const;
