@@ -4,7 +4,7 @@
 
 namespace echosim::app {
 
-render::PanelRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& plane)
+render::TargetRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& plane)
 {
     const float aspect = float(plane.width_mm / plane.depth_mm) * float(frame.height) / float(std::max(frame.width, 1u));
     const float width = std::min(aspect, 0.5f);
@@ -26,7 +26,9 @@ void SessionFrame::set(const DefaultScene& scene, const session::SessionView& st
 {
     scene_pass_.set_view(scene.frame_view(state));
     echo_pass_.set_frame(*state.echo);
-    panel_.set_rect(echo_panel_rect(extent, scene.session.image_plane()));
+    const render::TargetRect panel = echo_panel_rect(extent, scene.session.image_plane());
+    panel_.set_rect(panel);
+    scene_pass_.set_area({0.0f, 0.0f, panel.x, 1.0f});
 }
 
 }  // namespace echosim::app

@@ -1,6 +1,6 @@
 // The frame every driver of a session draws, in a window (`echosim run`) or offscreen (`echosim
-// soak`): the scene (the leg, the patch as the tissue leaves it, the probe) and, on the right, the
-// echographic image made on the GPU from the same physics step (its volume uploaded once). One
+// soak`): the scene (the leg, the patch as the tissue leaves it, the probe) on the left and, on the
+// right, the echographic image made on the GPU from the same physics step (its volume uploaded once). One
 // object so the window and the headless drivers draw the same passes in the same order.
 #pragma once
 
@@ -20,7 +20,7 @@ namespace echosim::app {
 
 // The echographic image's panel: the right of the frame, as tall as it is, keeping the image's
 // aspect (at most half the width).
-render::PanelRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& plane);
+render::TargetRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& plane);
 
 class SessionFrame {
 public:

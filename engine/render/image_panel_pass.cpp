@@ -1,7 +1,5 @@
 #include "render/image_panel_pass.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -16,24 +14,6 @@ namespace {
 constexpr gpu::BindingKind kBindings[] = {gpu::BindingKind::sampled_image};  // PANEL_IMAGE_BINDING
 static_assert(PANEL_IMAGE_SET == 0 && PANEL_IMAGE_BINDING == 0, "the panel's one binding is binding 0 of set 0");
 
-// a fraction of an edge to a pixel column or row, within [0, size]
-std::int64_t edge(float fraction, std::uint32_t size)
-{
-    return std::clamp<std::int64_t>(std::llround(double(fraction) * double(size)), 0, std::int64_t(size));
-}
-
-}  // namespace
-
-VkRect2D panel_pixels(const PanelRect& rect, VkExtent2D extent)
-{
-    const std::int64_t x0 = edge(rect.x, extent.width), x1 = edge(rect.x + rect.width, extent.width);
-    const std::int64_t y0 = edge(rect.y, extent.height), y1 = edge(rect.y + rect.height, extent.height);
-    return {{std::int32_t(x0), std::int32_t(y0)},
-            {std::uint32_t(std::max<std::int64_t>(0, x1 - x0)), std::uint32_t(std::max<std::int64_t>(0, y1 - y0))}};
-}
-
-namespace {
-
 // The panel's pipeline: no vertex buffers (the vertex shader makes the quad's corners from their
 // index), opaque (the panel replaces the scene under it); `sampler_decodes`: for sRGB images.
 VkPipeline make_panel(const gpu::Context& ctx, VkPipelineLayout layout, VkFormat color_format, bool sampler_decodes)
@@ -47,7 +27,7 @@ VkPipeline make_panel(const gpu::Context& ctx, VkPipelineLayout layout, VkFormat
     desc.fragment_spirv = shaders::panel_frag;
     desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
     desc.color_format = color_format;
-    desc.fragment_specialization = &specialization;
+    desc.specialization = &specialization;
     return create_graphics_pipeline(ctx.device(), layout, desc);
 }
 
@@ -58,7 +38,7 @@ bool is_srgb(VkFormat f)
 
 }  // namespace
 
-ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, PanelRect rect)
+ImagePanelPass::ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, TargetRect rect)
     : ctx_(ctx), color_format_(color_format), rect_(rect), descriptors_(ctx, kBindings, VK_SHADER_STAGE_FRAGMENT_BIT, "image panel"),
       pipeline_(ctx.device(), descriptors_.layout(), {}, "panel", [&](VkPipelineLayout layout) { return make_panel(ctx, layout, color_format, false); }),
       srgb_pipeline_(ctx.device(), descriptors_.layout(), {}, "panel (sRGB image)",
@@ -79,7 +59,7 @@ void ImagePanelPass::show(const gpu::Image& image, const gpu::Sampler& sampler)
 
 void ImagePanelPass::record(const gpu::PassContext& frame)
 {
-    const VkRect2D area = panel_pixels(rect_, frame.target.extent);
+    const VkRect2D area = target_pixels(rect_, frame.target.extent);
     if (!image_ || area.extent.width == 0 || area.extent.height == 0) return;
 
     // the presenter has waited for this slot's previous frame: its set may be re-pointed now

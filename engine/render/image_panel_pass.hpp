@@ -28,28 +28,19 @@
 #include "gpu/frame.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
+#include "render/target_rect.hpp"
 
 namespace echosim::render {
 
-// A rectangle of the target in fractions of its width and height, from its top-left corner; it
-// follows the target through resizes.
-struct PanelRect {
-    float x = 0.0f, y = 0.0f, width = 1.0f, height = 1.0f;
-};
-
-// The pixels a panel covers in a target of `extent` (edges rounded to the nearest pixel, clipped
-// to the target).
-VkRect2D panel_pixels(const PanelRect& rect, VkExtent2D extent);
-
 class ImagePanelPass final : public gpu::FramePass {
 public:
-    ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, PanelRect rect);
+    ImagePanelPass(const gpu::Context& ctx, VkFormat color_format, TargetRect rect);
     ~ImagePanelPass() override;
     ImagePanelPass(const ImagePanelPass&) = delete;
     ImagePanelPass& operator=(const ImagePanelPass&) = delete;
 
-    void set_rect(const PanelRect& rect) { rect_ = rect; }
-    const PanelRect& rect() const { return rect_; }
+    void set_rect(const TargetRect& rect) { rect_ = rect; }
+    const TargetRect& rect() const { return rect_; }
     // Shows `image` (2-D, else std::invalid_argument) through `sampler` in the frames recorded from
     // now on; both must outlive those frames. Any time, between frames or from a pass recorded
     // before the panel in the same frame: no GPU object is touched here.
@@ -70,7 +61,7 @@ private:
 
     const gpu::Context& ctx_;
     VkFormat color_format_;
-    PanelRect rect_;
+    TargetRect rect_;
     const gpu::Image* image_ = nullptr;  // what show() was last given
     const gpu::Sampler* sampler_ = nullptr;
     std::array<Shown, gpu::kFramesInFlight> bound_{};  // per slot

@@ -38,8 +38,12 @@ std::span<const std::byte> bytes_of(std::span<const T> s)
 ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkFormat color_format, const SceneMeshes& meshes)
     : ctx_(ctx), color_format_(color_format),
       descriptors_(ctx, kBindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "scene"),
-      pipeline_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)},
-                "mesh", [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat); })
+      vertex_lit_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)},
+                  "mesh (lit per vertex)",
+                  [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, false); }),
+      pixel_lit_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)},
+                 "mesh (lit per pixel)",
+                 [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, true); })
 {
     // static geometry goes to device-local memory once
     static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -68,8 +72,12 @@ ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkForma
 // (gpu/frame.hpp, "Lifetime"); the members go after this
 ScenePass::~ScenePass() { ctx_.wait_idle(); }
 
-VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format)
+VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
+                                           bool lit_per_pixel)
 {
+    const VkBool32 per_pixel = lit_per_pixel ? VK_TRUE : VK_FALSE;
+    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};  // LIT_PER_PIXEL, shaders/mesh_lighting.glsl
+    const VkSpecializationInfo specialization{1, &entry, sizeof(per_pixel), &per_pixel};
     const VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
     const VkVertexInputAttributeDescription attributes[3] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, position)},
@@ -88,14 +96,16 @@ VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout
     desc.front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     desc.color_format = color_format;
     desc.depth_format = depth_format;
+    desc.specialization = &specialization;
     return create_graphics_pipeline(dev, layout, desc);
 }
 
-void ScenePass::draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
-                    const glm::mat4& model, const glm::vec4& tint)
+void ScenePass::draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
+                     const glm::mat4& model, const glm::vec4& tint)
 {
     const DrawPush push{model, tint};
-    vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
     vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
@@ -120,8 +130,10 @@ void ScenePass::record(const gpu::PassContext& pass)
         slot.depth = gpu::Image(ctx_, target.extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                 VK_IMAGE_ASPECT_DEPTH_BIT);
 
+    const VkRect2D area = target_pixels(area_, target.extent);
+
     // per-frame data: the slot's fence has signalled, so the GPU no longer reads these buffers
-    const float aspect = float(target.extent.width) / float(std::max(1u, target.extent.height));
+    const float aspect = float(std::max(1u, area.extent.width)) / float(std::max(1u, area.extent.height));
     FrameUniforms frame{};
     frame.view_proj = view.camera.projection(aspect) * view.camera.view();
     frame.eye = glm::vec4(view.camera.eye(), 1.0f);
@@ -162,24 +174,30 @@ void ScenePass::record(const gpu::PassContext& pass)
     rendering.colorAttachmentCount = 1;
     rendering.pColorAttachments = &color;
     rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &rendering);
+    vkCmdBeginRendering(cmd, &rendering);  // clears all the target: what no pass draws is background
+    if (area.extent.width == 0 || area.extent.height == 0) {
+        vkCmdEndRendering(cmd);
+        return;
+    }
 
-    const VkViewport vp{0, 0, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, target.extent};
+    const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
+    const VkRect2D scissor = area;
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
+    // the two pipelines' layouts are made from the same set layout and push range, so the set
+    // bound on one stays bound across the switch
     const VkDescriptorSet set = descriptors_.set(pass.slot);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), MESH_FRAME_SET, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, vertex_lit_.layout(), MESH_FRAME_SET, 1, &set, 0, nullptr);
 
     const glm::mat4 identity(1.0f);
-    draw(cmd, static_mesh_.vertices.handle(), static_mesh_.indices.handle(), static_mesh_.index_count, identity,
+    // the matte skin, drape and table first: they hide most of what lies behind them
+    draw(cmd, vertex_lit_, static_mesh_.vertices.handle(), static_mesh_.indices.handle(), static_mesh_.index_count, identity,
          glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
     // the patch carries ultrasound gel: same skin, a little glossier
-    draw(cmd, slot.patch_vertices.handle(), patch_indices_.handle(), patch_index_count_, identity,
+    draw(cmd, pixel_lit_, slot.patch_vertices.handle(), patch_indices_.handle(), patch_index_count_, identity,
          glm::vec4(1.0f, 1.0f, 1.0f, 0.35f));
     if (view.show_probe)
-        draw(cmd, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
+        draw(cmd, pixel_lit_, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
              glm::vec4(1.0f, 1.0f, 1.0f, 0.55f));
     vkCmdEndRendering(cmd);
 }

@@ -1,7 +1,7 @@
 // The scene pass: draws the static leg (uploaded once), the exam patch (vertices replaced every
-// frame) and the probe into the frame's target, with a depth buffer of its own. It clears the
-// target, so it comes first among the passes that draw (gpu/frame.hpp); views and overlays load
-// what it leaves. Presenters own the targets and the frame pacing; the pass only records.
+// frame) and the probe into its area of the frame's target (all of it unless told), with a depth
+// buffer of its own. It clears the whole target, so it comes first among the passes that draw
+// (gpu/frame.hpp); views and overlays load what it leaves. Presenters own the targets and the frame pacing; the pass only records.
 //
 // Frame slots: per slot the pass keeps its own uniform buffer (and descriptor set pointing at it),
 // patch vertex buffer and depth image (the presenter guarantees the GPU is done with a slot before
@@ -24,6 +24,7 @@
 #include "gpu/frame.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
+#include "render/target_rect.hpp"
 #include "scene/camera.hpp"
 #include "scene/mesh.hpp"
 
@@ -55,6 +56,10 @@ public:
     // What the next frame shows; its patch must have as many vertices as the rest mesh (checked
     // here) and stay valid until that frame is recorded.
     void set_view(const FrameView& view);
+    // Where on the target the scene is drawn, from the next frame recorded: beside a panel rather
+    // than under it, so the camera frames the leg in the space the trainee sees, and no pixel is
+    // shaded to be painted over. The camera's aspect is the area's.
+    void set_area(const TargetRect& area) { area_ = area; }
 
     const char* name() const override { return "scene"; }
     gpu::TargetUse target_use() const override { return gpu::TargetUse::color_attachment(gpu::TargetLoad::clear); }
@@ -72,21 +77,25 @@ private:
         gpu::Image depth;
     };
 
-    static VkPipeline create_mesh_pipeline(VkDevice device, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format);
-    void draw(VkCommandBuffer cmd, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
+    static VkPipeline create_mesh_pipeline(VkDevice device, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
+                                           bool lit_per_pixel);
+    void draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
               const glm::mat4& model, const glm::vec4& tint);
 
     const gpu::Context& ctx_;
     VkFormat color_format_;
     static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
     gpu::SlotDescriptors descriptors_;  // per slot: the slot's uniforms
-    gpu::Pipeline pipeline_;            // on descriptors_' layout: declared after it
+    // on descriptors_' layout, declared after it: the one lights the dense matte meshes per
+    // vertex, the other the glossy ones per pixel (shaders/mesh_lighting.glsl)
+    gpu::Pipeline vertex_lit_, pixel_lit_;
     GpuMesh static_mesh_, probe_;
     gpu::Buffer patch_indices_;
     std::uint32_t patch_index_count_ = 0;
     std::size_t patch_vertex_count_ = 0;
     std::array<Slot, gpu::kFramesInFlight> slots_;
     FrameView view_;
+    TargetRect area_;
 };
 
 }  // namespace echosim::render

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -55,22 +57,33 @@ void orient_to_normals(Mesh& mesh)
     }
 }
 
-Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 color)
+Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 color, float max_cell_mm)
 {
+    if (!(max_cell_mm > 0.0f)) throw std::invalid_argument("make_box: max_cell_mm must be positive");
     Mesh m;
-    // one quad per face, each with its own four vertices so the edges stay sharp
+    // each face has its own vertices so the edges stay sharp
     const std::array<glm::vec3, 6> normals = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
                                               glm::vec3(0, -1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
+    const glm::vec3 half = (hi - lo) * 0.5f;
     for (const glm::vec3& n : normals) {
-        // two tangents spanning the face
+        // two tangents spanning the face, and the face's half extents along them
         const glm::vec3 u = std::abs(n.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         const glm::vec3 v = glm::cross(n, u);
-        const glm::vec3 centre = (lo + hi) * 0.5f + n * (hi - lo) * 0.5f;
-        const glm::vec3 half = (hi - lo) * 0.5f;
+        const glm::vec3 centre = (lo + hi) * 0.5f + n * half;
+        const float hu = glm::dot(glm::abs(u), half), hv = glm::dot(glm::abs(v), half);
+        const int cu = std::max(1, int(std::ceil(2.0f * hu / max_cell_mm)));
+        const int cv = std::max(1, int(std::ceil(2.0f * hv / max_cell_mm)));
         const auto base = std::uint32_t(m.vertices.size());
-        for (const auto& [su, sv] : std::array<std::pair<float, float>, 4>{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}})
-            m.vertices.push_back({centre + su * u * half + sv * v * half, n, color});
-        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
+        for (int j = 0; j <= cv; ++j)
+            for (int i = 0; i <= cu; ++i) {
+                const float su = -1.0f + 2.0f * float(i) / float(cu), sv = -1.0f + 2.0f * float(j) / float(cv);
+                m.vertices.push_back({centre + su * hu * u + sv * hv * v, n, color});
+            }
+        const auto at = [&](int i, int j) { return base + std::uint32_t(j * (cu + 1) + i); };
+        for (int j = 0; j < cv; ++j)
+            for (int i = 0; i < cu; ++i)
+                for (std::uint32_t k : {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)})
+                    m.indices.push_back(k);
     }
     orient_to_normals(m);
     return m;

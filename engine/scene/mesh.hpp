@@ -37,7 +37,9 @@ void recompute_normals(Mesh& mesh);
 // the scene pass can cull back faces (the builders produce outward normals; winding is fixed here).
 void orient_to_normals(Mesh& mesh);
 
-// An axis-aligned box with flat faces (the examination table).
-Mesh make_box(glm::vec3 min, glm::vec3 max, glm::vec3 color);
+// An axis-aligned box with flat faces (the examination table), each face a grid of quads no side
+// of which is longer than `max_cell_mm`: the scene lights its static meshes per vertex, and the
+// view-dependent terms (the sheen towards grazing angles) need vertices across a large face.
+Mesh make_box(glm::vec3 min, glm::vec3 max, glm::vec3 color, float max_cell_mm = 25.0f);
 
 }  // namespace echosim::scene

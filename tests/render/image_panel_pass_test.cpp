@@ -29,7 +29,7 @@ namespace {
 constexpr VkExtent2D kTarget{480, 270};
 constexpr VkExtent2D kImage{16, 9};
 // 0.6 and 0.4 of 480 x 270: x 288..480, y 54..162, so 12 px per texel either way
-constexpr PanelRect kRect{0.6f, 0.2f, 0.4f, 0.4f};
+constexpr TargetRect kRect{0.6f, 0.2f, 0.4f, 0.4f};
 constexpr VkRect2D kPixels{{288, 54}, {192, 108}};
 
 using Texel = std::array<std::uint8_t, 4>;
@@ -66,13 +66,13 @@ PixelCheck check(const io::RgbaImage& frame, const io::RgbaImage& scene_only, co
 
 TEST(ImagePanel, CoversItsRectangleOfTheTarget)
 {
-    const VkRect2D r = panel_pixels(kRect, kTarget);
+    const VkRect2D r = target_pixels(kRect, kTarget);
     EXPECT_EQ(r.offset.x, kPixels.offset.x);
     EXPECT_EQ(r.offset.y, kPixels.offset.y);
     EXPECT_EQ(r.extent.width, kPixels.extent.width);
     EXPECT_EQ(r.extent.height, kPixels.extent.height);
     // clipped to the target
-    const VkRect2D out = panel_pixels({0.9f, -0.5f, 0.5f, 1.0f}, {100, 100});
+    const VkRect2D out = target_pixels({0.9f, -0.5f, 0.5f, 1.0f}, {100, 100});
     EXPECT_EQ(out.offset.x, 90);
     EXPECT_EQ(out.offset.y, 0);
     EXPECT_EQ(out.extent.width, 10u);

@@ -143,5 +143,35 @@ TEST_F(SceneRender, PatchDeformationIsDrawn)
     EXPECT_NE(rest.pixels, pressed.pixels);
 }
 
+TEST_F(SceneRender, DrawsInItsAreaWhatATargetOfThatSizeShows)
+{
+    // beside a panel on the right half: the left half shows the scene as a target of the left
+    // half's size does (same aspect, same framing), the right half only the background
+    render::FrameView view = scene_.frame_view();
+    gpu_->scene_pass.set_area({0.0f, 0.0f, 0.5f, 1.0f});
+    const io::RgbaImage beside = draw(view);
+    io::RgbaImage alone;
+    {
+        gpu::OffscreenPresenter half(gpu_->commands, {kWidth / 2, kHeight});
+        gpu_->scene_pass.set_area({});
+        half.render(gpu_->passes, &alone);
+    }
+    ASSERT_EQ(alone.width, kWidth / 2);
+    int differ = 0;
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+        for (std::uint32_t x = 0; x < kWidth / 2; ++x) differ += std::memcmp(beside.at(x, y), alone.at(x, y), 3) != 0;
+    EXPECT_EQ(differ, 0) << "pixels of the left half unlike the scene drawn alone at that size";
+    const std::uint8_t* background = beside.at(kWidth - 1, 0);
+    int drawn_right = 0;
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+        for (std::uint32_t x = kWidth / 2; x < kWidth; ++x) drawn_right += std::memcmp(beside.at(x, y), background, 3) != 0;
+    EXPECT_EQ(drawn_right, 0) << "the scene drew outside its area";
+    // and the scene is there at all: the leg covers much of the left half
+    int drawn_left = 0;
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+        for (std::uint32_t x = 0; x < kWidth / 2; ++x) drawn_left += std::memcmp(beside.at(x, y), background, 3) != 0;
+    EXPECT_GT(drawn_left, int(kWidth / 2 * kHeight / 4));
+}
+
 }  // namespace
 }  // namespace echosim

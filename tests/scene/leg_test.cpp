@@ -79,5 +79,37 @@ TEST(Mesh, RecomputedNormalsOfAFlatGridPointUp)
     EXPECT_NEAR(std::abs(m.vertices[0].normal.y), 1.0f, 1e-6f);
 }
 
+TEST(Mesh, ABoxIsItsSixFacesInCellsNoLargerThanAsked)
+{
+    const glm::vec3 lo(-30, 0, -100), hi(30, 4, 160);  // 60 x 4 x 260 mm
+    const Mesh box = make_box(lo, hi, glm::vec3(0.5f), 25.0f);
+    ASSERT_EQ(box.indices.size() % 3, 0u);
+    double area = 0;
+    float longest = 0;
+    for (std::size_t t = 0; t < box.indices.size(); t += 3) {
+        const Vertex& a = box.vertices[box.indices[t]];
+        const Vertex& b = box.vertices[box.indices[t + 1]];
+        const Vertex& c = box.vertices[box.indices[t + 2]];
+        const glm::vec3 cross = glm::cross(b.position - a.position, c.position - a.position);
+        area += 0.5 * double(glm::length(cross));
+        // counter-clockwise seen from outside: the winding agrees with the face's normal
+        EXPECT_GT(glm::dot(cross, a.normal), 0.0f) << "triangle " << t / 3;
+        for (const glm::vec3& e : {b.position - a.position, c.position - b.position})  // the quad's sides (not its diagonal)
+            longest = std::max({longest, std::abs(e.x), std::abs(e.y), std::abs(e.z)});
+    }
+    // the box's surface, 2 (60*4 + 60*260 + 4*260) mm², covered once
+    EXPECT_NEAR(area, 2.0 * (60 * 4 + 60 * 260 + 4 * 260), 1e-2);
+    EXPECT_LE(longest, 25.0f + 1e-3f);
+    // every vertex on the box's surface, on the face its normal names
+    for (const Vertex& v : box.vertices) {
+        const glm::vec3 n = v.normal;
+        const float plane = glm::dot(n, n.x + n.y + n.z > 0 ? hi : lo);
+        EXPECT_NEAR(glm::dot(n, v.position), plane, 1e-3f);
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(v.position, lo - 1e-3f)) && glm::all(glm::lessThanEqual(v.position, hi + 1e-3f)));
+    }
+    // (cells + 1)² vertices a face: 4 x 12 on the 60 x 260 faces, 2 x 12 on the 4 x 260, 4 x 2 on the 60 x 4
+    EXPECT_EQ(box.vertices.size(), std::size_t(2 * 48 + 2 * 24 + 2 * 8));
+}
+
 }  // namespace
 }  // namespace echosim::scene
