@@ -32,6 +32,16 @@ void main()
     vec4 row_texel = texelFetch(post_rows, int(r));
     PostRow row = PostRow(row_texel.x, row_texel.y, row_texel.z, row_texel.w);
     float y = pixel_y(r, s.pixel_y_mm);
+    // the map columns the run reads (map_tap): fetched once for its pixels, a fetch being the cost
+    // that counts on a CPU device, and picked per pixel by selects (a computed index into an
+    // array would go through memory there)
+    uint first = 0u;
+    vec2 taps[SLICE_RUN + 1];
+    if (warped) {
+        first = map_tap(c0, s).left;
+        int row_start = int(r * s.map_columns), last = int(s.map_columns) - 1;
+        [[unroll]] for (int k = 0; k <= SLICE_RUN; ++k) taps[k] = texelFetch(map, row_start + min(int(first) + k, last)).xy;
+    }
     uint packed = 0u;
     // a row's last word may reach past its last column: those bytes repeat that column (the copy
     // into the image leaves them), so every lane runs the same code
@@ -41,8 +51,12 @@ void main()
         vec2 m = vec2(y, 0.0);
         if (warped) {
             MapTap t = map_tap(c, s);
-            uint row_start = r * s.map_columns;
-            m = mix(texelFetch(map, int(row_start + t.left)).xy, texelFetch(map, int(row_start + t.right)).xy, t.right_weight);
+            vec2 left = taps[0], right = taps[0];
+            [[unroll]] for (uint k = 1u; k <= uint(SLICE_RUN); ++k) {
+                left = t.left == first + k ? taps[k] : left;
+                right = t.right == first + k ? taps[k] : right;
+            }
+            m = mix(left, right, t.right_weight);
         }
         vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
         float grey = 0.0;

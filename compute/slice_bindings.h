@@ -42,8 +42,8 @@ struct SliceParams {
     float pixel_y_mm;
     float width_mm;
     uint flags;  // SLICE_WARPED | SLICE_LABELS | SLICE_GREY | SLICE_POST | SLICE_PACKED: the kernel's variant
-    uint map_columns;      // the deform map's columns across the same width (deform_bindings.h)
-    float map_pixel_x_mm;  // and their spacing [mm]
+    uint map_columns;  // the deform map's columns across the same width (deform_bindings.h), at most `columns`
+    float map_step;    // map_columns / columns: the map's columns per image column, at most 1
 };
 
 // A frame's parameters of the fused slice and post stages (a uniform buffer: more than push
@@ -67,6 +67,10 @@ KERNEL_FN float packed_trilinear(vec4 near_z, vec4 far_z, vec3 f)
 
 // Where pixel column c reads the deform map, which has map_columns columns across the image's
 // width: the map columns either side of the pixel's lateral position, and the right one's weight.
+// The position is one product, (c + 1/2) map_step - 1/2 (the map's centres and the image's agree at
+// the edges), so neighbouring pixels' taps never lie further apart than their columns do: the
+// SLICE_RUN pixels of a run read at most SLICE_RUN + 1 map columns from their first one's left
+// (exactly the pixel's own columns when the map is as fine as the image, map_step 1).
 struct MapTap {
     uint left;
     uint right;
@@ -75,7 +79,7 @@ struct MapTap {
 KERNEL_FN MapTap map_tap(uint c, SliceParams p)
 {
     float last = float(p.map_columns - 1u);
-    float u = clamp((pixel_x(c, p.pixel_x_mm, p.width_mm) + 0.5f * p.width_mm) / p.map_pixel_x_mm - 0.5f, 0.0f, last);
+    float u = clamp((float(c) + 0.5f) * p.map_step - 0.5f, 0.0f, last);
     MapTap t;
     t.left = min(uint(u), p.map_columns - 1u);
     t.right = min(t.left + 1u, p.map_columns - 1u);

@@ -107,6 +107,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
     const auto px = float(plane.pixel_x_mm()), py = float(plane.pixel_y_mm());
     const std::uint32_t map_columns = deform_columns(grid, plane);
     const auto map_px = float(plane.width_mm / map_columns);
+    const auto map_step = float(double(map_columns) / double(plane.columns));  // 1 exactly when the map is as fine
 
     KernelParams k{};
     k.deform = {probe_to_index,
@@ -126,7 +127,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                 float(kLinearProbe.frequency_mhz),
                 labelled ? 0u : DEFORM_PAPER_LINEAR,
                 0u};
-    k.slice = {probe_to_index, plane.columns, plane.rows, px, py, float(plane.width_mm), warped ? SLICE_WARPED : 0u, map_columns, map_px};
+    k.slice = {probe_to_index, plane.columns, plane.rows, px, py, float(plane.width_mm), warped ? SLICE_WARPED : 0u, map_columns, map_step};
     k.post.columns = plane.columns;
     k.post.rows = plane.rows;
     k.post.pixel_x_mm = px;

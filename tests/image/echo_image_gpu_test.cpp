@@ -73,9 +73,17 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
         gpu::Context ctx(test::lavapipe_options());
         messages = ctx.validation_counter();
         gpu::CommandPool pool(ctx);
-        const auto cpu = [&](const echo::EchoFrame& f, bool labels) {
-            return echo::render_echo_cpu(v.grey, labels ? &v.labels : nullptr, s.image_plane(), f, scanner, s.patient(), labels);
+        const auto cpu = [&](const echo::EchoFrame& f, bool labels, const echo::ImagePlane& plane) {
+            return echo::render_echo_cpu(v.grey, labels ? &v.labels : nullptr, plane, f, scanner, s.patient(), labels);
         };
+        // the live plane reads a deform map coarser than its pixels (a fraction of a map column
+        // each); a plane as coarse as the map reads one map column a pixel (map_step 1)
+        echo::ImagePlane coarse = s.image_plane();
+        coarse.columns = 100;
+        coarse.rows = 125;
+        session::Session coarse_session(session::SessionOptions{.image = coarse});
+        coarse_session.press_and_settle(coarse_session.probe().rest, 12.0);
+        const echo::EchoFrame coarse_frame = *coarse_session.view().echo;
         // both ways of holding the grey levels: the sampler's (a GPU's) and the packed one (lavapipe's)
         for (const GreyLayout layout : {GreyLayout::sampler, GreyLayout::packed}) {
             SCOPED_TRACE(layout == GreyLayout::packed ? "packed volume" : "R8 volume, trilinear sampler");
@@ -86,9 +94,14 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
             EchoImageGpu without(ctx, bare, s.image_plane(), s.patient());
             with_labels.scanner() = scanner;
             without.scanner() = scanner;
-            expect_twins(with_labels.render(pool, rest, true), cpu(rest, true), "at rest");
-            expect_twins(with_labels.render(pool, pressed, true), cpu(pressed, true), "pressed 12 mm");
-            expect_twins(without.render(pool, pressed), cpu(pressed, false), "pressed, no labels");
+            expect_twins(with_labels.render(pool, rest, true), cpu(rest, true, s.image_plane()), "at rest");
+            expect_twins(with_labels.render(pool, pressed, true), cpu(pressed, true, s.image_plane()), "pressed 12 mm");
+            expect_twins(without.render(pool, pressed), cpu(pressed, false, s.image_plane()), "pressed, no labels");
+            EchoImageGpu coarse_image(ctx, labelled, coarse, s.patient());
+            coarse_image.scanner() = scanner;
+            const echo::EchoImage coarse_pressed = coarse_image.render(pool, coarse_frame, true);
+            ASSERT_EQ(coarse_pressed.map_columns, coarse.columns) << "the coarse plane's map is as fine as its pixels";
+            expect_twins(coarse_pressed, cpu(coarse_frame, true, coarse), "pressed 12 mm, 100 x 125 pixels");
             // the same frame twice: the GPU is deterministic
             EXPECT_EQ(with_labels.render(pool, pressed).rgba, with_labels.render(pool, pressed).rgba);
         }
