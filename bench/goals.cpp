@@ -101,6 +101,11 @@ std::vector<GoalLine> evaluate_goals(std::span<const Goal> goals, const nlohmann
             const bool met = g.compare == Compare::at_least ? line.value >= g.threshold : line.value <= g.threshold;
             line.status = met ? GoalStatus::met : GoalStatus::not_met;
             line.measured = number(line.value * g.scale) + (g.unit.empty() ? "" : " " + g.unit);
+            // a median of repetitions carries its spread (median_row): said beside the figure
+            const std::string lo = g.field + "_min", hi = g.field + "_max";
+            if (row->contains("repetitions") && row->contains(lo) && row->contains(hi) && (*row)[lo].is_number() && (*row)[hi].is_number())
+                line.measured += " (median of " + std::to_string((*row)["repetitions"].get<long long>()) + ": " +
+                                 number((*row)[lo].get<double>() * g.scale) + "-" + number((*row)[hi].get<double>() * g.scale) + ")";
         } else if (row) {
             line.measured = "not measured (no " + g.field + " in " + g.row + ")";
         }

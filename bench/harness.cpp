@@ -2,12 +2,15 @@
 
 #include <sys/utsname.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include <benchmark/benchmark.h>
@@ -59,7 +62,25 @@ nlohmann::json machine(const std::string& gpu)
             {"date", date}};
 }
 
-// Collects Google Benchmark's runs instead of printing them.
+// One line of the table as the rows come in: name, time per iteration, iterations, then the
+// row's other fields.
+void print_row(const nlohmann::json& row)
+{
+    std::printf("  %-34s %10.3f ms %8lld it", row["name"].get<std::string>().c_str(), row["ms_per_iteration"].get<double>(),
+                static_cast<long long>(row["iterations"].get<double>()));
+    for (const auto& [key, value] : row.items()) {
+        if (key == "name" || key == "ms_per_iteration" || key == "iterations") continue;
+        if (value.is_number())
+            std::printf("  %s=%g", key.c_str(), value.get<double>());
+        else if (value.is_string())
+            std::printf("  %s=%s", key.c_str(), value.get<std::string>().c_str());
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
+// Collects Google Benchmark's runs instead of printing them; a row run several times
+// (--repetitions) becomes one row, its median (median_row), when its last repetition is in.
 class Collector : public benchmark::BenchmarkReporter {
 public:
     bool ReportContext(const Context&) override { return true; }
@@ -70,30 +91,73 @@ public:
                 errors.push_back(run.benchmark_name() + ": " + run.error_message);
                 continue;
             }
+            if (run.run_type == Run::RT_Aggregate) continue;  // Google Benchmark's mean, median, stddev: ours has the spread too
             nlohmann::json row;
             row["name"] = run.run_name.function_name;
             // GetAdjustedRealTime is in the run's own time unit
             row["ms_per_iteration"] = run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit) * 1e3;
             row["iterations"] = run.iterations;
-            for (const auto& [key, counter] : run.counters) row[key] = counter.value;
+            std::vector<std::string> rates;
+            for (const auto& [key, counter] : run.counters) {
+                row[key] = counter.value;
+                if ((counter.flags & benchmark::Counter::kIsRate) != 0) rates.push_back(key);
+            }
             // text fields: a suite labels its rows "key=value key=value"
             std::istringstream label(run.report_label);
             for (std::string field; label >> field;)
                 if (const auto eq = field.find('='); eq != std::string::npos) row[field.substr(0, eq)] = field.substr(eq + 1);
-            rows.push_back(row);
-            std::printf("  %-34s %10.3f ms %8lld it", run.run_name.function_name.c_str(), double(row["ms_per_iteration"]),
-                        static_cast<long long>(run.iterations));
-            for (const auto& [key, counter] : run.counters) std::printf("  %s=%g", key.c_str(), counter.value);
-            if (!run.report_label.empty()) std::printf("  %s", run.report_label.c_str());
-            std::printf("\n");
-            std::fflush(stdout);
+            if (run.repetitions <= 1) {
+                add(row);
+                continue;
+            }
+            std::vector<nlohmann::json>& so_far = repeated_[run.run_name.function_name];
+            so_far.push_back(row);
+            if (std::int64_t(so_far.size()) == run.repetitions) {
+                add(median_row(so_far, rates));
+                so_far.clear();
+            }
         }
     }
     std::vector<nlohmann::json> rows;
     std::vector<std::string> errors;
+
+private:
+    void add(const nlohmann::json& row)
+    {
+        rows.push_back(row);
+        print_row(row);
+    }
+    std::map<std::string, std::vector<nlohmann::json>> repeated_;  // by row name: the repetitions in so far
 };
 
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 }  // namespace
+
+nlohmann::json median_row(const std::vector<nlohmann::json>& repetitions, const std::vector<std::string>& rates)
+{
+    if (repetitions.empty()) throw std::invalid_argument("median_row: no repetitions");
+    nlohmann::json out = repetitions.front();
+    for (const auto& [key, value] : repetitions.front().items()) {
+        if (!value.is_number()) continue;
+        std::vector<double> values;
+        for (const nlohmann::json& r : repetitions)
+            if (r.contains(key) && r[key].is_number()) values.push_back(r[key].get<double>());
+        out[key] = median(values);
+        if (std::find(rates.begin(), rates.end(), key) != rates.end()) {
+            out[key + "_min"] = *std::min_element(values.begin(), values.end());
+            out[key + "_max"] = *std::max_element(values.begin(), values.end());
+        }
+    }
+    out["repetitions"] = repetitions.size();
+    return out;
+}
+
 }  // namespace echosim::bench
 
 namespace echosim::app {
@@ -114,6 +178,15 @@ int run_bench(const BenchArgs& args)
             return kExitBadInput;
         }
 
+    if (args.repetitions < 1) {
+        std::fprintf(stderr, "echosim bench: --repetitions %d: at least 1\n", args.repetitions);
+        return kExitBadInput;
+    }
+    // Google Benchmark takes the repetitions every row runs as a flag of its own
+    const std::string repetitions_flag = "--benchmark_repetitions=" + std::to_string(args.repetitions);
+    std::vector<char*> flags = {const_cast<char*>("echosim"), const_cast<char*>(repetitions_flag.c_str())};
+    int flag_count = int(flags.size());
+    benchmark::Initialize(&flag_count, flags.data());
     SuiteOptions options{context_options(args.gpu), args.min_time_s};
     nlohmann::json report = nlohmann::json::array();
     int status = kExitOk;

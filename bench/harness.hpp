@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "gpu/context.hpp"
 
 namespace echosim::bench {
@@ -19,6 +21,13 @@ struct SuiteOptions {
     gpu::ContextOptions gpu;
     double min_time_s = 1.0;
 };
+
+// One row from a row's repetitions (`echosim bench --repetitions N`): every numeric field the
+// median of its values, and each field named in `rates` also with its least and greatest
+// (`fps_min`, `fps_max`), so a shared machine's spread is on record beside the figure judged.
+// Text fields come from the first repetition; `repetitions` says how many there were. Throws
+// std::invalid_argument on no rows.
+nlohmann::json median_row(const std::vector<nlohmann::json>& repetitions, const std::vector<std::string>& rates);
 
 struct Suite {
     std::string name;

@@ -146,6 +146,7 @@ struct BenchArgs {
     std::filesystem::path json;
     double min_time_s = 1.0;
     std::string filter = ".";  // Google Benchmark's filter over the row names
+    int repetitions = 1;       // runs of each row; more than one: its median, with the spread (bench/harness.hpp)
 };
 int run_bench(const BenchArgs& args);
 

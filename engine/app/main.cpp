@@ -136,6 +136,9 @@ int main(int argc, char** argv)
     bench_cmd->add_option("names", bench.names, "benchmarks to run (default: all)");
     bench_cmd->add_option("--json", bench.json, "also write the results as JSON to this file");
     bench_cmd->add_option("--min-time", bench.min_time_s, "seconds each measurement runs at least")->check(CLI::PositiveNumber);
+    bench_cmd->add_option("--repetitions", bench.repetitions,
+                          "run each row this many times and report its median, with the least and greatest rates (a shared machine's spread)")
+        ->check(CLI::Range(1, 100));
     bench_cmd->add_option("--filter", bench.filter, "run only the rows whose name matches this regular expression (e.g. 'physics/50625/')");
     add_gpu_options(bench_cmd, bench.gpu);
 

@@ -1,12 +1,15 @@
 // The goal table of `echosim bench` (bench/goals.cpp) on made-up suite results: a goal met, one not
-// met, one whose row did not run, one whose suite did not run; and the shipped goals name rows the
-// suites write.
+// met, one whose row did not run, one whose suite did not run; a row's repetitions as their median;
+// and the shipped goals name rows the suites write.
 #include "bench/goals.hpp"
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
+
+#include "bench/harness.hpp"
 
 namespace echosim::bench {
 namespace {
@@ -69,6 +72,33 @@ TEST(BenchGoals, TableAndJson)
     EXPECT_EQ(physics[0]["compare"], ">=");
     EXPECT_TRUE(physics[1]["value"].is_null());
     EXPECT_EQ(goal_lines_json(lines, "fit").size(), 2u);
+}
+
+TEST(BenchGoals, ARepeatedRowIsItsMedianWithItsSpread)
+{
+    // five runs of one row on a noisy machine: the median is judged, the spread is said
+    std::vector<nlohmann::json> runs;
+    for (double fps : {240.0, 131.0, 262.0, 255.0, 199.0})
+        runs.push_back({{"name", "physics/2500"}, {"steps_per_s", fps}, {"ms_per_iteration", 1000.0 / fps}, {"width", 1024.0}, {"backend", "lavapipe"}});
+    const nlohmann::json row = median_row(runs, {"steps_per_s"});
+    EXPECT_EQ(row["steps_per_s"], 240.0);
+    EXPECT_EQ(row["steps_per_s_min"], 131.0);
+    EXPECT_EQ(row["steps_per_s_max"], 262.0);
+    EXPECT_DOUBLE_EQ(row["ms_per_iteration"].get<double>(), 1000.0 / 240.0);
+    EXPECT_EQ(row["width"], 1024.0);
+    EXPECT_EQ(row["backend"], "lavapipe");
+    EXPECT_EQ(row["repetitions"], 5);
+    EXPECT_FALSE(row.contains("width_min")) << "only the rates get a spread";
+    // an even count: the mean of the middle two
+    runs.pop_back();
+    EXPECT_EQ(median_row(runs, {})["steps_per_s"], 247.5);
+    EXPECT_THROW(median_row({}, {}), std::invalid_argument);
+
+    nlohmann::json r = report();
+    r[0]["results"][0] = median_row(std::vector<nlohmann::json>(runs.begin(), runs.end()), {"steps_per_s"});
+    const std::vector<GoalLine> lines = evaluate_goals(kGoals, r);
+    EXPECT_EQ(lines[0].measured, "248 steps/s (median of 4: 131-262)");
+    EXPECT_EQ(lines[0].status, GoalStatus::not_met);
 }
 
 // The shipped goals against the recorded results (bench/results/*.json, the suites' own JSON):
