@@ -5,7 +5,9 @@
 //   uint deform_label(vec3 index)          the tissue code at a continuous label-voxel index
 //   TissueMechanics deform_tissue(uint code)
 //   vec2 deform_profile(uint column)       (skin_y, skin_shift) [mm]
-//   vec4 scratch_load(uint i) / void scratch_store(uint i, vec4 v)
+//   vec4 scratch_load(uint column, uint step) / void scratch_store(uint column, uint step, vec4 v)
+//                                          (where a step's entry lies is the includer's: the GPU
+//                                          interleaves the columns, the CPU keeps each together)
 //   void map_store(uint pixel, vec2 v)     (source y [mm], gain [dB]) of pixel = row * columns + column
 
 void deform_column(uint c, DeformParams p)
@@ -16,7 +18,6 @@ void deform_column(uint c, DeformParams p)
     float h = p.step_mm;
     bool linear = (p.flags & DEFORM_PAPER_LINEAR) != 0u;
     uint steps = uint(clamp(ceil((p.depth_mm - skin_y) / h), 0.0f, float(p.max_steps)));
-    uint base = c * p.max_steps;
 
     // 1. down the column from the skin: each step's tissue, its compliance under the stress that
     //    reaches it, and how much of it a lumen loses to the pressure there. A scratch entry is
@@ -38,7 +39,7 @@ void deform_column(uint c, DeformParams p)
         closing = closing || closure > 0.0f;
         vec4 w = closure != 0.0f ? vec4(0.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
                                  : vec4(t.compliance * influence, t.max_strain, 0.0f, 1.0f);
-        scratch_store(base + k, w);
+        scratch_store(c, k, w);
         if (w.z == 0.0f) pressed += solid_strain(w.x, w.y, stress) * h;
     }
 
@@ -50,15 +51,15 @@ void deform_column(uint c, DeformParams p)
     if (closing) {
         float since = 1e9f;  // [mm] from the last closing step above
         for (uint k = 0u; k < steps; ++k) {
-            vec4 w = scratch_load(base + k);
+            vec4 w = scratch_load(c, k);
             since = w.z > 0.0f ? 0.0f : since + h;
-            if (w.z == 0.0f) scratch_store(base + k, vec4(w.x, w.y, 0.0f, since));
+            if (w.z == 0.0f) scratch_store(c, k, vec4(w.x, w.y, 0.0f, since));
         }
         float until = 1e9f;  // [mm] to the next closing step below
         for (uint k = steps; k > 0u; --k) {
-            vec4 w = scratch_load(base + k - 1u);
+            vec4 w = scratch_load(c, k - 1u);
             until = w.z > 0.0f ? 0.0f : until + h;
-            if (w.z == 0.0f) scratch_store(base + k - 1u, vec4(w.x, w.y, 0.0f, exp2(-min(w.w, until) / DEFORM_INFLOW_MM)));
+            if (w.z == 0.0f) scratch_store(c, k - 1u, vec4(w.x, w.y, 0.0f, exp2(-min(w.w, until) / DEFORM_INFLOW_MM)));
         }
     }
     //    The remainder's level sigma: sum_k h min(g_k sigma, room_k) = |residual|, with g_k = a_k x
@@ -70,7 +71,7 @@ void deform_column(uint c, DeformParams p)
     for (int pass = 0; pass < 16; ++pass) {
         float free_sum = 0.0f, full = 0.0f;
         for (uint k = 0u; k < steps; ++k) {
-            vec4 w = scratch_load(base + k);
+            vec4 w = scratch_load(c, k);
             if (w.z != 0.0f) continue;
             float g = w.x * w.w, room = w.y - dir * solid_strain(w.x, w.y, stress);
             if (g * sigma >= room) full += room * h;
@@ -91,7 +92,7 @@ void deform_column(uint c, DeformParams p)
         ++r;
     }
     for (uint k = 0u; k < steps && r < p.rows; ++k) {
-        vec4 w = scratch_load(base + k);
+        vec4 w = scratch_load(c, k);
         float pressure_strain = solid_strain(w.x, w.y, stress);
         float strain = w.z != 0.0f ? w.z : pressure_strain + dir * min(w.x * w.w * sigma, w.y - dir * pressure_strain);
         float top = skin_y + float(k) * h + shift - shortened;
