@@ -1,7 +1,8 @@
 // The scene pass: draws the static leg (uploaded once), the exam patch (vertices replaced every
 // frame) and the probe into its area of the frame's target (all of it unless told), with a depth
 // buffer of its own. It clears the whole target, so it comes first among the passes that draw
-// (gpu/frame.hpp); views and overlays load what it leaves. Presenters own the targets and the frame pacing; the pass only records.
+// (gpu/frame.hpp); views and overlays load what it leaves. Presenters own the targets and the
+// frame pacing; the pass only records.
 //
 // Frame slots: per slot the pass keeps its own uniform buffer (and descriptor set pointing at it),
 // patch vertex buffer and depth image (the presenter guarantees the GPU is done with a slot before
