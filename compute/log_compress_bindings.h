@@ -22,12 +22,10 @@ struct LogCompressParams {
 };
 
 // The display's grey level for an echo `db` [dB] relative to full white (gain included): the
-// `dynamic_range_db` below it map linearly onto 0..255, as a scanner's log compression does.
-KERNEL_FN uint display_grey(float db, float dynamic_range_db)
-{
-    float level = clamp((db + dynamic_range_db) / dynamic_range_db, 0.0f, 1.0f);
-    return uint(level * 255.0f + 0.5f);
-}
+// `dynamic_range_db` below it map linearly onto 0..255, as a scanner's log compression does; from
+// the level 0..1 that dB makes.
+KERNEL_FN uint grey_of_level(float level) { return uint(clamp(level, 0.0f, 1.0f) * 255.0f + 0.5f); }
+KERNEL_FN uint display_grey(float db, float dynamic_range_db) { return grey_of_level((db + dynamic_range_db) / dynamic_range_db); }
 
 #ifdef __cplusplus
 }  // namespace echosim::kernels

@@ -47,15 +47,17 @@ KERNEL_FN float tgc_db(float y, PostParams p)
     return dot(p.tgc_near, near_w) + dot(p.tgc_far, far_w);
 }
 
-// What a row of the image shares: its gain before the deform stage's [dB], how many columns from
-// the left its depth tick covers (0: none), and how far from the right edge the focus' triangle
-// reaches on it [mm] (0 or less: not on this row). The per-pixel part (post_pixel) is then a few
-// operations; the slice kernel reads the rows' from a table its dispatcher fills (computed in the
-// kernel, once per four pixels, this cost llvmpipe half the frame).
+// What a row of the image shares: the display level (0..1) a sliced grey of 0 takes on it before
+// the deform stage's gain (the volume's dB, the gain, the TGC and the display's dynamic range in one
+// offset), how many columns from the left its depth tick covers (0: none), and the column past
+// which the focus' triangle covers it (columns - 1 or more: not on this row). The per-pixel part
+// (post_pixel) is then two compares and two multiply-adds; the slice kernel reads the rows' from a
+// table its dispatcher fills (computed in the kernel, once per four pixels, this cost llvmpipe half
+// the frame).
 struct PostRow {
-    float db_offset;
+    float level_offset;
     float tick_columns;
-    float focus_reach_mm;
+    float focus_column;
     float pad;  // a row is one RGBA32F texel of the slice kernel's table
 };
 
@@ -63,9 +65,10 @@ KERNEL_FN PostRow post_row(uint r, PostParams p)
 {
     float y = pixel_y(r, p.pixel_y_mm);
     PostRow row;
-    row.db_offset = p.gain_db + tgc_db(y, p);
+    // level = (db + range) / range, db = (grey / 255 - 1) vdr + gain + tgc (+ the deform's gain)
+    row.level_offset = (p.gain_db + tgc_db(y, p) - p.volume_dynamic_range_db + p.dynamic_range_db) / p.dynamic_range_db;
     row.tick_columns = 0.0f;
-    row.focus_reach_mm = 0.0f;
+    row.focus_column = float(p.columns);
     row.pad = 0.0f;
     if ((p.flags & POST_MARKERS) == 0u) return row;
     float thick = max(p.pixel_y_mm, p.depth_mm / 300.0f);  // [mm] a tick's height
@@ -76,7 +79,8 @@ KERNEL_FN PostRow post_row(uint r, PostParams p)
     }
     // the triangle: half height `size` [mm] at the right edge, narrowing to a point 2 size in
     float size = p.depth_mm / 80.0f;
-    row.focus_reach_mm = 2.0f * (size - abs(y - p.focus_mm));
+    float reach_mm = 2.0f * (size - abs(y - p.focus_mm));
+    if (reach_mm > 0.0f) row.focus_column = float(p.columns - 1u) - reach_mm / p.pixel_x_mm;
     return row;
 }
 
@@ -84,10 +88,11 @@ KERNEL_FN PostRow post_row(uint r, PostParams p)
 // deform gain is `gain_db`.
 KERNEL_FN uint post_pixel(uint c, float grey, float gain_db, PostRow row, PostParams p)
 {
-    float from_right = float(p.columns - 1u - c) * p.pixel_x_mm;  // [mm]
-    if (float(c) < row.tick_columns || from_right < row.focus_reach_mm) return 255u;
-    float db = (grey / 255.0f - 1.0f) * p.volume_dynamic_range_db + row.db_offset + ((p.flags & POST_WARPED) != 0u ? gain_db : 0.0f);
-    return display_grey(db, p.dynamic_range_db);
+    float column = float(c);
+    if (column < row.tick_columns || column > row.focus_column) return 255u;
+    float level = grey * (p.volume_dynamic_range_db / (255.0f * p.dynamic_range_db)) + row.level_offset;
+    if ((p.flags & POST_WARPED) != 0u) level += gain_db / p.dynamic_range_db;
+    return grey_of_level(level);
 }
 
 // The displayed grey of pixel (c, r): post_pixel on post_row(r).
