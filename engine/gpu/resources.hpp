@@ -81,8 +81,6 @@ private:
     VkImageAspectFlags aspect_ = 0;
 };
 
-// How a sampler reads between texels. Every sampler clamps to the edge on all axes and reads
-// normalised coordinates, without mip levels: images and volumes are sampled where they are.
 // A buffer seen as a one-dimensional array of texels of one format, for `texelFetch` from a
 // uniform texel buffer (GLSL `samplerBuffer`): on llvmpipe such a read is one vector gather, where
 // a storage buffer's is a loop over the lanes. Throws naming `what` when the device cannot read
@@ -105,6 +103,8 @@ private:
     VkBufferView view_ = VK_NULL_HANDLE;
 };
 
+// How a sampler reads between texels. Every sampler clamps to the edge on all axes and reads
+// normalised coordinates, without mip levels: images and volumes are sampled where they are.
 enum class Filter { nearest, linear };
 
 class Sampler {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
-#include <vector>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "echo/echo_image_cpu.hpp"
 #include "echosim_compute_shaders.hpp"
