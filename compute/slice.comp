@@ -63,8 +63,8 @@ void main()
         if ((FLAGS & SLICE_PACKED) != 0u) {
             vec3 lo = clamp(floor(index), vec3(0.0), max(size - 2.0, vec3(0.0)));
             ivec3 at = ivec3(lo);
-            ivec3 far_z = at + ivec3(0, 0, min(1, int(size.z) - 1));  // a volume one voxel deep has no far slice
-            float sample_ = packed_trilinear(texelFetch(volume, at, 0), texelFetch(volume, far_z, 0), index - lo);
+            ivec3 far_x = at + ivec3(min(1, int(size.x) - 1), 0, 0);  // a volume one voxel wide has no far column
+            float sample_ = packed_trilinear(texelFetch(volume, at, 0), texelFetch(volume, far_x, 0), index - lo);
             grey = inside_volume(index, size) ? sample_ * 255.0 : 0.0;
         } else {
             grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;

@@ -32,7 +32,7 @@ namespace echosim::kernels {
 #define SLICE_LABELS 2u  // also write the labels
 #define SLICE_GREY 4u    // also write the sliced grey levels
 #define SLICE_POST 8u    // the displayed bytes go through the post stage (else: the sliced grey, rounded)
-#define SLICE_PACKED 16u // the volume is RGBA8 texels of 2 x 2 neighbours (below); else R8 through the trilinear sampler
+#define SLICE_PACKED 16u // the volume is RGBA8 texels of 2 x 2 neighbours in (y, z) (below); else R8 through the trilinear sampler
 
 struct SliceParams {
     mat4 probe_to_index;  // pressed probe frame [mm] -> volume voxel index (the labels share its grid)
@@ -53,16 +53,18 @@ struct SliceFrame {
     PostParams post;
 };
 
-// A packed volume (SLICE_PACKED): texel (x, y, z) holds the grey levels of (x, y), (x + 1, y),
-// (x, y + 1), (x + 1, y + 1) at depth z, clamped at the far edges, so a trilinear sample is two
-// fetches and the lerps. Made on CPU devices (image::EchoVolumeGpu says when): llvmpipe's trilinear
-// filter gathers eight texels per sample and costs several times two plain fetches; a GPU's
-// sampler does it in hardware, from a quarter of the memory.
-KERNEL_FN float packed_trilinear(vec4 near_z, vec4 far_z, vec3 f)
+// A packed volume (SLICE_PACKED): texel (x, y, z) holds the grey levels of (y, z), (y + 1, z),
+// (y, z + 1), (y + 1, z + 1) at x, clamped at the far edges, so a trilinear sample is the texels
+// at x and x + 1 and the lerps. Made on CPU devices (image::EchoVolumeGpu says when): llvmpipe's
+// trilinear filter gathers eight texels per sample and costs several times two plain fetches; a
+// GPU's sampler does it in hardware, from a quarter of the memory. The two texels are neighbours in
+// memory (llvmpipe lays images out linearly, x fastest), so a sample reads one cache line, not two
+// from slices a whole image apart, and a plane through the volume touches half the lines and pages.
+KERNEL_FN float packed_trilinear(vec4 near_x, vec4 far_x, vec3 f)
 {
-    vec2 near_y = mix(vec2(near_z.x, near_z.z), vec2(near_z.y, near_z.w), f.x);
-    vec2 far_y = mix(vec2(far_z.x, far_z.z), vec2(far_z.y, far_z.w), f.x);
-    return mix(mix(near_y.x, near_y.y, f.y), mix(far_y.x, far_y.y, f.y), f.z);
+    vec4 at_x = mix(near_x, far_x, f.x);  // the (y, z) square's corners at x + f.x
+    vec2 at_y = mix(vec2(at_x.x, at_x.z), vec2(at_x.y, at_x.w), f.y);
+    return mix(at_y.x, at_y.y, f.z);
 }
 
 // Where pixel column c reads the deform map, which has map_columns columns across the image's

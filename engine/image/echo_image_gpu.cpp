@@ -26,8 +26,8 @@ gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat fo
 // host's); beyond it the R8 volume and the trilinear sampler serve.
 constexpr std::uint64_t kMaxPackedBytes = std::uint64_t(2) << 30;
 
-// The volume as slice_bindings.h's packed texels: (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1) at
-// each depth, the far neighbours clamped to the edge.
+// The volume as slice_bindings.h's packed texels: at each x, the grey levels of (y, z), (y + 1, z),
+// (y, z + 1), (y + 1, z + 1), the far neighbours clamped to the edge.
 std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
 {
     const std::size_t nx = v.size[0], ny = v.size[1], nz = v.size[2];
@@ -35,13 +35,14 @@ std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
     std::vector<std::uint32_t> out(nx * ny * nz);
     for (std::size_t z = 0; z < nz; ++z)
         for (std::size_t y = 0; y < ny; ++y) {
-            const std::uint8_t* row = g + v.index(0, y, z);
-            const std::uint8_t* next = g + v.index(0, std::min(y + 1, ny - 1), z);
+            const std::size_t y1 = std::min(y + 1, ny - 1), z1 = std::min(z + 1, nz - 1);
+            const std::uint8_t* here = g + v.index(0, y, z);
+            const std::uint8_t* below = g + v.index(0, y1, z);
+            const std::uint8_t* behind = g + v.index(0, y, z1);
+            const std::uint8_t* both = g + v.index(0, y1, z1);
             std::uint32_t* dst = out.data() + (z * ny + y) * nx;
-            for (std::size_t x = 0; x < nx; ++x) {
-                const std::size_t x1 = std::min(x + 1, nx - 1);
-                dst[x] = std::uint32_t(row[x]) | std::uint32_t(row[x1]) << 8 | std::uint32_t(next[x]) << 16 | std::uint32_t(next[x1]) << 24;
-            }
+            for (std::size_t x = 0; x < nx; ++x)
+                dst[x] = std::uint32_t(here[x]) | std::uint32_t(below[x]) << 8 | std::uint32_t(behind[x]) << 16 | std::uint32_t(both[x]) << 24;
         }
     return out;
 }
