@@ -8,7 +8,7 @@ layout(local_size_x = DEFORM_GROUP_SIZE) in;
 layout(binding = DEFORM_LABELS_BINDING) uniform usampler3D labels;
 layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 profile[]; };
 layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
-layout(std430, binding = DEFORM_SCRATCH_BINDING) buffer Scratch { vec4 scratch[]; };
+layout(std430, binding = DEFORM_SCRATCH_BINDING) buffer Scratch { uvec2 scratch[]; };
 layout(std430, binding = DEFORM_MAP_BINDING) writeonly buffer Map { vec2 map[]; };
 layout(push_constant) uniform Push { DeformParams params; };
 
@@ -25,8 +25,8 @@ vec2 deform_profile(uint column) { return profile[column]; }
 // step-major: the invocations of a group (neighbouring columns) walk down side by side, so their
 // entries of a step share cache lines; column-major put them max_steps x 16 bytes apart, a line
 // (and on a CPU device a gather's lane) each
-vec4 scratch_load(uint column, uint step) { return scratch[step * params.columns + column]; }
-void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = v; }
+vec4 scratch_load(uint column, uint step) { return scratch_unpack(scratch[step * params.columns + column]); }
+void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = scratch_pack(v); }
 void map_store(uint pixel, vec2 v) { map[pixel] = v; }
 
 #include "deform_column.h"

@@ -42,7 +42,7 @@ namespace echosim::kernels {
 #define DEFORM_LABELS_BINDING 0   // usampler3D: tissue codes (a 1-voxel map of 0 without labels)
 #define DEFORM_PROFILE_BINDING 1  // vec2 per column: (skin_y [mm], skin_shift [mm])
 #define DEFORM_TISSUES_BINDING 2  // uniform: TissueMechanics per tissue code
-#define DEFORM_SCRATCH_BINDING 3  // vec4 per column per walk step (the kernel's own working memory)
+#define DEFORM_SCRATCH_BINDING 3  // uvec2 per column per walk step, scratch_pack's (the kernel's own working memory)
 #define DEFORM_MAP_BINDING 4      // vec2 per pixel: (source y [mm], gain [dB])
 #define DEFORM_TISSUE_CODES 16
 
@@ -81,6 +81,18 @@ struct DeformParams {
     uint flags;              // DEFORM_PAPER_LINEAR
     uint pad;
 };
+
+// A walk step's scratch entry as it is kept between the walks: four half floats in two words. A SIMD
+// device stores and loads a word at a time per lane (llvmpipe: a loop over the lanes), and the
+// walks go over the scratch five to eight times; what an entry holds (compliances, strains, a
+// lumen's closure, shares, gains in dB, distances in mm) needs no more than half's 11 bits. The CPU
+// twin keeps it the same way, so both round alike.
+KERNEL_FN uvec2 scratch_pack(vec4 v) { return uvec2(packHalf2x16(vec2(v.x, v.y)), packHalf2x16(vec2(v.z, v.w))); }
+KERNEL_FN vec4 scratch_unpack(uvec2 u)
+{
+    vec2 a = unpackHalf2x16(u.x), b = unpackHalf2x16(u.y);
+    return vec4(a.x, a.y, b.x, b.y);
+}
 
 // The vertical stress under the corner of a uniformly loaded l x b rectangle at depth z, as a
 // fraction of the load (Newmark's integration of Boussinesq's solution). A negative l or b counts

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
 namespace echosim::kernels {
 using uint = std::uint32_t;
 using glm::vec2;
@@ -18,6 +19,8 @@ using glm::vec3;
 using glm::vec4;
 using glm::mat4;
 using glm::uvec2;
+using glm::packHalf2x16;
+using glm::unpackHalf2x16;
 using glm::clamp;
 using glm::max;
 using glm::min;

@@ -14,7 +14,7 @@ using namespace echosim::kernels;
 // are the shader's globals on the GPU.
 class DeformColumns {
 public:
-    DeformColumns(const io::Volume* labels, std::span<const ColumnProfile> profile, const TissueTable& tissues, std::vector<vec4>& scratch,
+    DeformColumns(const io::Volume* labels, std::span<const ColumnProfile> profile, const TissueTable& tissues, std::vector<uvec2>& scratch,
                   std::uint32_t max_steps, std::vector<glm::vec2>& map)
         : labels_(labels), profile_(profile), tissues_(tissues), scratch_(scratch), max_steps_(max_steps), map_(map)
     {
@@ -35,14 +35,14 @@ private:
     TissueMechanics deform_tissue(uint code) const { return tissues_[code]; }
     vec2 deform_profile(uint column) const { return {profile_[column].skin_y_mm, profile_[column].skin_shift_mm}; }
     // column-major: one column is walked at a time
-    vec4 scratch_load(uint column, uint step) const { return scratch_[column * max_steps_ + step]; }
-    void scratch_store(uint column, uint step, vec4 v) { scratch_[column * max_steps_ + step] = v; }
+    vec4 scratch_load(uint column, uint step) const { return scratch_unpack(scratch_[column * max_steps_ + step]); }
+    void scratch_store(uint column, uint step, vec4 v) { scratch_[column * max_steps_ + step] = scratch_pack(v); }
     void map_store(uint pixel, vec2 v) { map_[pixel] = v; }
 
     const io::Volume* labels_;
     std::span<const ColumnProfile> profile_;
     const TissueTable& tissues_;
-    std::vector<vec4>& scratch_;  // max_steps_ entries a column
+    std::vector<uvec2>& scratch_;  // max_steps_ entries a column
     std::size_t max_steps_;
     std::vector<glm::vec2>& map_;
 };
@@ -56,7 +56,7 @@ std::vector<glm::vec2> deform_cpu(const io::Volume* labels, std::span<const Colu
         throw std::invalid_argument("deform: " + std::to_string(profile.size()) + " column profiles for " + std::to_string(params.columns) +
                                     " columns");
     if (labels && labels->type != io::VoxelType::uint8) throw std::invalid_argument("deform: the label map is not uint8");
-    std::vector<glm::vec4> scratch(std::size_t(params.columns) * params.max_steps);
+    std::vector<glm::uvec2> scratch(std::size_t(params.columns) * params.max_steps);
     std::vector<glm::vec2> map(std::size_t(params.columns) * params.rows);
     kernels_cpu::DeformColumns columns(labels, profile, tissues, scratch, params.max_steps, map);
     for (std::uint32_t c = 0; c < params.columns; ++c) columns.deform_column(c, params);

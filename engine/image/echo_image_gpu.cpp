@@ -130,7 +130,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                                 gpu::MemoryUse::host_visible);
         slot.row_texels = gpu::TexelView(ctx, slot.rows, VK_FORMAT_R32G32B32A32_SFLOAT, "the image rows' post parameters");
         slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
-        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
+        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * sizeof(kernels::uvec2), storage, gpu::MemoryUse::device_local);
         slot.map = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * plane_.rows * 2 * sizeof(float),
                                storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.map_texels = gpu::TexelView(ctx, slot.map, VK_FORMAT_R32G32_SFLOAT, "the deform map");
