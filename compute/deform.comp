@@ -23,7 +23,7 @@ uint deform_label(vec3 index)
 TissueMechanics deform_tissue(uint code) { return tissues[code]; }
 vec2 deform_profile(uint column) { return profile[column]; }
 // step-major: the invocations of a group (neighbouring columns) walk down side by side, so their
-// entries of a step share cache lines; column-major put them max_steps x 16 bytes apart, a line
+// entries of a step share cache lines; column-major put them max_steps entries apart, a line
 // (and on a CPU device a gather's lane) each
 vec4 scratch_load(uint column, uint step) { return scratch_unpack(scratch[step * params.columns + column]); }
 void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = scratch_pack(v); }

@@ -85,8 +85,9 @@ struct DeformParams {
 // A walk step's scratch entry as it is kept between the walks: four half floats in two words. A SIMD
 // device stores and loads a word at a time per lane (llvmpipe: a loop over the lanes), and the
 // walks go over the scratch five to eight times; what an entry holds (compliances, strains, a
-// lumen's closure, shares, gains in dB, distances in mm) needs no more than half's 11 bits. The CPU
-// twin keeps it the same way, so both round alike.
+// lumen's closure, shares, gains in dB, distances in mm) needs no more than half's 11 bits; the
+// walk's "no lumen that way" distance (1e9) becomes half's largest or infinity, which the min() it
+// meets takes alike. The CPU twin keeps the scratch the same way, so both round alike.
 KERNEL_FN uvec2 scratch_pack(vec4 v) { return uvec2(packHalf2x16(vec2(v.x, v.y)), packHalf2x16(vec2(v.z, v.w))); }
 KERNEL_FN vec4 scratch_unpack(uvec2 u)
 {
