@@ -3,13 +3,15 @@
 #include "deform_bindings.h"
 
 // The deform stage of the echographic image: one invocation per image column walks it from the skin
-// down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp).
+// down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp), in two
+// dispatches: every column solved on its own (DEFORM_SOLVE), then mapped with its neighbours (DEFORM_MAP).
 layout(local_size_x = DEFORM_GROUP_SIZE) in;
 layout(binding = DEFORM_LABELS_BINDING) uniform usampler3D labels;
 layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 profile[]; };
 layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
 layout(std430, binding = DEFORM_SCRATCH_BINDING) buffer Scratch { uvec2 scratch[]; };
 layout(std430, binding = DEFORM_MAP_BINDING) writeonly buffer Map { vec2 map[]; };
+layout(std430, binding = DEFORM_DISP_BINDING) buffer Disp { vec4 disp[]; };
 layout(push_constant) uniform Push { DeformParams params; };
 
 uint deform_label(vec3 index)
@@ -28,6 +30,9 @@ vec2 deform_profile(uint column) { return profile[column]; }
 vec4 scratch_load(uint column, uint step) { return scratch_unpack(scratch[step * params.columns + column]); }
 void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = scratch_pack(v); }
 void map_store(uint pixel, vec2 v) { map[pixel] = v; }
+// step-major too: a boundary's neighbours, which deform_spread reads, lie side by side
+vec4 disp_load(uint column, uint boundary) { return disp[boundary * params.columns + column]; }
+void disp_store(uint column, uint boundary, vec4 v) { disp[boundary * params.columns + column] = v; }
 
 #include "deform_column.h"
 
@@ -35,5 +40,6 @@ void main()
 {
     uint c = gl_GlobalInvocationID.x;
     if (c >= params.columns) return;
-    deform_column(c, params);
+    if (params.pass == DEFORM_SOLVE) deform_column_solve(c, params);
+    else deform_column_map(c, params);
 }

@@ -2,7 +2,8 @@
 // DESIGN.md §1): where, in the undeformed volume, each pixel of the pressed image comes from. Shared
 // with its CPU twin (engine/echo/deform_cpu.cpp) and its dispatcher (engine/image/echo_image_gpu.cpp).
 //
-// The model, one image column (one lateral position x along the array) at a time:
+// The model, one image column (one lateral position x along the array) at a time, but for the
+// sideways spread at the end:
 //   - the column starts at the undeformed skin (y = skin_y in the pressed probe's frame, negative
 //     above the face) and ends at the image's depth, which the deformation does not move (the bone
 //     and the deep tissue hardly move: the tissue model's springs are anchored there);
@@ -18,9 +19,13 @@
 //   - what the pressure and the lumens leave of the skin's shift (the shift is the simulated
 //     tissue's; the compliances are the image model's) is taken up by the solids too, so the
 //     column's shortening equals the shift and the deep end stays put. Where a lumen closes by more
-//     than that, the remainder is negative: the tissue next to the lumen stretches into the space
-//     (tissue flowing in from the sides, which a column cannot show otherwise), its share halving
-//     every DEFORM_INFLOW_MM from the lumen;
+//     than that, the remainder is negative: the tissue above and below it sinks and rises into the
+//     space (in truth it also flows in from the sides, which a column cannot show), stretching the
+//     steps near it, the more the nearer (DEFORM_INFLOW_MM);
+//   - then, all columns solved, their displacements spread sideways (a second pass): the tissue
+//     above a closing vein sinks with it and drags its neighbours along, over a width growing
+//     with the distance from the lumen (DEFORM_SPREAD), while the walls, the skin and the deep end
+//     stay where their own column puts them, so the walls still meet;
 //   - where a lumen closes, the sound no longer crosses that length of weakly attenuating blood: what
 //     lies below loses the posterior enhancement it had (a gain in dB carried down the column).
 // Without labels the paper's linear deformation applies: one compliance, no decay with depth.
@@ -44,9 +49,22 @@ namespace echosim::kernels {
 #define DEFORM_TISSUES_BINDING 2  // uniform: TissueMechanics per tissue code
 #define DEFORM_SCRATCH_BINDING 3  // uvec2 per column per walk step, scratch_pack's (the kernel's own working memory)
 #define DEFORM_MAP_BINDING 4      // vec2 per pixel: (source y [mm], gain [dB])
+#define DEFORM_DISP_BINDING 5     // vec4 per column per step boundary (max_steps + 1): how far it moved, distances to lumens [mm]
 #define DEFORM_TISSUE_CODES 16
 
-#define DEFORM_INFLOW_MM 2.0f  // how far from a closing lumen the tissue flowing in stretches (halving distance) [mm]
+// how far from a closing lumen the tissue sinking and rising into it stretches (halving distance
+// of its share) [mm]: per mm the column's lumens close, and at least
+#define DEFORM_INFLOW_PER_MM 0.5f
+#define DEFORM_INFLOW_MM 2.0f
+// the sideways spread of the columns' displacements (deform_column.h, deform_spread): its standard
+// deviation per mm of distance from a lumen's wall, the skin or the deep end, and its largest [mm];
+// and the closure from which a lumen's walls count (they meet: the spread must not part them)
+#define DEFORM_SPREAD 0.7f
+#define DEFORM_SPREAD_MAX_MM 3.0f
+#define DEFORM_MEETING 0.5f
+
+#define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)
+#define DEFORM_MAP 1u    // then the map, from the columns and their neighbours (deform_column_map)
 
 #define DEFORM_PAPER_LINEAR 1u  // no labels: one compliance, no decay with depth
 
@@ -79,7 +97,7 @@ struct DeformParams {
     float tgc_db_cm_mhz;     // the attenuation the time-gain compensation assumes [dB/cm/MHz]
     float frequency_mhz;
     uint flags;              // DEFORM_PAPER_LINEAR
-    uint pad;
+    uint pass;               // DEFORM_SOLVE or DEFORM_MAP: which of the two passes a dispatch runs
 };
 
 // A walk step's scratch entry as it is kept between the walks: four half floats in two words. A SIMD
@@ -115,10 +133,13 @@ KERNEL_FN float face_influence(float x, float z, float w, float l)
     return 2.0f * (corner_influence(0.5f * w + x, 0.5f * l, zz) + corner_influence(0.5f * w - x, 0.5f * l, zz));
 }
 
+// Whether a tissue is a vessel's lumen (which may close, or widen with the pulse), not a solid.
+KERNEL_FN bool is_lumen_tissue(TissueMechanics t) { return t.max_closure > 0.0f || t.pulse_strain > 0.0f; }
+
 // The fraction of its length a lumen loses at transmitted pressure p [kPa] (negative: it widens).
 KERNEL_FN float lumen_closure(TissueMechanics t, float p, float pulse)
 {
-    if (t.max_closure <= 0.0f && t.pulse_strain <= 0.0f) return 0.0f;
+    if (!is_lumen_tissue(t)) return 0.0f;
     float onset = t.collapse_onset_kpa, width = max(t.collapse_width_kpa, 1e-6f);
     return t.max_closure * smoothstep(onset, onset + width, p) - t.pulse_strain * pulse;
 }

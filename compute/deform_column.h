@@ -8,9 +8,59 @@
 //   vec4 scratch_load(uint column, uint step) / void scratch_store(uint column, uint step, vec4 v)
 //                                          (where a step's entry lies is the includer's: the GPU
 //                                          interleaves the columns, the CPU keeps each together)
+//   vec4 disp_load(uint column, uint boundary) / void disp_store(uint column, uint boundary, vec4 v)
+//                                          a step boundary's (displacement, distances to lumens, -)
+//                                          [mm], max_steps + 1 a column
 //   void map_store(uint pixel, vec2 v)     (source y [mm], gain [dB]) of pixel = row * columns + column
+// and runs deform_column_solve for every column, then (once all are done: deform_column_map reads
+// the neighbours' displacements) deform_column_map for every column.
 
-void deform_column(uint c, DeformParams p)
+// Whether a scratch entry is a lumen's (a solid's compliance is never negative).
+bool is_lumen(vec4 w) { return w.x < 0.0f; }
+
+// Whether a scratch entry's step keeps its shape, so the sideways spread must not bend it: a lumen
+// that stays open (an artery) and a rigid solid (bone).
+bool holds_shape(vec4 w) { return is_lumen(w) ? w.z < DEFORM_MEETING : w.y == 0.0f; }
+
+// A solid step's strain once the column's two remainders are taken up (deform_column_solve, walk
+// 3): `solved` = (level, direction) of the first (by compliance, w.x) and of the second (by share,
+// w.w), from `stage` 0 (the pressure's strain alone) to 2 (both). Each takes what room the largest
+// strain (w.y) leaves, either way.
+float solid_strain_after(vec4 w, float stress, vec4 solved, uint stage)
+{
+    float strain = solid_strain(w.x, w.y, stress);
+    if (stage > 0u) strain += solved.y * min(w.x * solved.x, w.y - solved.y * strain);
+    if (stage > 1u) strain += solved.w * min(w.w * solved.z, w.y - solved.w * strain);
+    return strain;
+}
+
+// The level sigma at which stage `stage`'s remainder `amount` [mm] is taken up: sum_k h min(g_k
+// sigma, room_k) = |amount|, g_k the step's weight (compliance, or share), room_k what its largest
+// strain leaves after the stages before. From sigma = 0, each pass solves the linear law with the
+// steps the last sigma filled held full; sigma only grows towards the answer, and reaches it once
+// the filled set stops changing.
+float remainder_level(uint c, uint steps, float h, float stress, float amount, vec4 solved, uint stage)
+{
+    float dir = sign(amount), sigma = 0.0f;
+    for (int pass = 0; pass < 16; ++pass) {
+        float free_sum = 0.0f, full = 0.0f;
+        for (uint k = 0u; k < steps; ++k) {
+            vec4 w = scratch_load(c, k);
+            if (is_lumen(w)) continue;
+            float g = stage == 0u ? w.x : w.w, room = w.y - dir * solid_strain_after(w, stress, solved, stage);
+            if (g * sigma >= room) full += room * h;
+            else free_sum += g * h;
+        }
+        if (free_sum <= 0.0f) break;  // every step rigid or full: the column cannot take more
+        float next = (abs(amount) - full) / free_sum;
+        if (next <= sigma) break;
+        sigma = next;
+    }
+    return sigma;
+}
+
+// The first pass, one column on its own: its steps' tissues, strains and displacements.
+void deform_column_solve(uint c, DeformParams p)
 {
     float x = pixel_x(c, p.pixel_x_mm, p.width_mm);
     vec2 profile = deform_profile(c);
@@ -21,10 +71,11 @@ void deform_column(uint c, DeformParams p)
 
     // 1. down the column from the skin: each step's tissue, its compliance under the stress that
     //    reaches it, and how much of it a lumen loses to the pressure there. A scratch entry is
-    //    (a, e, 0, 1) for a solid step (compliance x influence [1/kPa], largest strain, and its
-    //    share of the inflow below) and (0, 0, closure, gain [dB]) for a lumen step.
+    //    (a, e, 0, 0) for a solid step (compliance x influence [1/kPa], largest strain; walk 3 puts
+    //    its share of the lumens' change last) and (-1, 0, closure, gain [dB]) for a lumen step,
+    //    closing or not (is_lumen).
     float closed = 0.0f;  // [mm]
-    bool closing = false;
+    bool changing = false;  // whether a lumen closes or widens
     // 2. (in the same walk) the solids compress under the probe's pressure as it reaches them (the
     //    paper's linear deformation has no pressure law: its column takes the shift alone)
     float stress = linear ? 0.0f : p.skin_pressure_kpa;
@@ -36,76 +87,131 @@ void deform_column(uint c, DeformParams p)
         float influence = linear ? 1.0f : face_influence(x, depth, p.face_width_mm, p.face_length_mm);
         float closure = lumen_closure(t, p.skin_pressure_kpa * influence, p.pulse);
         closed += closure * h;
-        closing = closing || closure > 0.0f;
-        vec4 w = closure != 0.0f ? vec4(0.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
-                                 : vec4(t.compliance * influence, t.max_strain, 0.0f, 1.0f);
+        changing = changing || closure != 0.0f;
+        vec4 w = is_lumen_tissue(t) ? vec4(-1.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
+                                 : vec4(t.compliance * influence, t.max_strain, 0.0f, 0.0f);
         scratch_store(c, k, w);
-        if (w.z == 0.0f) pressed += solid_strain(w.x, w.y, stress) * h;
+        if (!is_lumen(w)) pressed += solid_strain(w.x, w.y, stress) * h;
     }
 
-    // 3. what the pressure and the lumens leave of the skin's shift (from the simulated tissue) is
-    //    taken up by the solids in series. Where a lumen closes, that remainder is the tissue around
-    //    it flowing into the space (a column cannot show the flow from the sides otherwise): only
-    //    the solid steps near a closing lumen take it, their share halving every DEFORM_INFLOW_MM.
-    float residual = shift - closed - pressed;
-    if (closing) {
-        float since = 1e9f;  // [mm] from the last closing step above
+    // 3. the column's two remainders. First, what the pressure leaves of the skin's shift (from
+    //    the simulated tissue), taken up by the solids in series by their compliances, as though no
+    //    lumen changed. Then what the lumens lose (or gain) of their length: the tissue around
+    //    them sinks and rises into the space, stretching the steps near it (the flow from the
+    //    sides, which a column cannot show), each step's share halving every inflow_mm from the
+    //    nearest lumen that changes, above and below alike, whatever the tissue.
+    vec4 solved = vec4(0.0f);
+    float first = shift - pressed;
+    solved.x = remainder_level(c, steps, h, stress, first, solved, 0u);
+    solved.y = sign(first);
+    if (changing) {
+        float inflow_mm = max(DEFORM_INFLOW_MM, DEFORM_INFLOW_PER_MM * abs(closed));
+        float since = 1e9f;  // [mm] from the last changing lumen step above
         for (uint k = 0u; k < steps; ++k) {
             vec4 w = scratch_load(c, k);
-            since = w.z > 0.0f ? 0.0f : since + h;
-            if (w.z == 0.0f) scratch_store(c, k, vec4(w.x, w.y, 0.0f, since));
+            since = w.z != 0.0f ? 0.0f : since + h;
+            if (!is_lumen(w)) scratch_store(c, k, vec4(w.x, w.y, 0.0f, since));
         }
-        float until = 1e9f;  // [mm] to the next closing step below
+        float until = 1e9f;  // [mm] to the next changing lumen step below
         for (uint k = steps; k > 0u; --k) {
             vec4 w = scratch_load(c, k - 1u);
-            until = w.z > 0.0f ? 0.0f : until + h;
-            if (w.z == 0.0f) scratch_store(c, k - 1u, vec4(w.x, w.y, 0.0f, exp2(-min(w.w, until) / DEFORM_INFLOW_MM)));
+            until = w.z != 0.0f ? 0.0f : until + h;
+            if (!is_lumen(w)) scratch_store(c, k - 1u, vec4(w.x, w.y, 0.0f, exp2(-min(w.w, until) / inflow_mm)));
         }
-    }
-    //    The remainder's level sigma: sum_k h min(g_k sigma, room_k) = |residual|, with g_k = a_k x
-    //    share_k and room_k what step k's largest strain leaves. From sigma = 0, each pass solves the
-    //    linear law with the steps the last sigma filled held full; sigma only grows towards the
-    //    answer, and reaches it once the filled set stops changing.
-    float dir = sign(residual);
-    float sigma = 0.0f;
-    for (int pass = 0; pass < 16; ++pass) {
-        float free_sum = 0.0f, full = 0.0f;
-        for (uint k = 0u; k < steps; ++k) {
-            vec4 w = scratch_load(c, k);
-            if (w.z != 0.0f) continue;
-            float g = w.x * w.w, room = w.y - dir * solid_strain(w.x, w.y, stress);
-            if (g * sigma >= room) full += room * h;
-            else free_sum += g * h;
-        }
-        if (free_sum <= 0.0f) break;  // every step rigid or full: the column cannot take more
-        float next = (abs(residual) - full) / free_sum;
-        if (next <= sigma) break;
-        sigma = next;
+        solved.z = remainder_level(c, steps, h, stress, -closed, solved, 1u);
+        solved.w = -sign(closed);
     }
 
-    // 4. where each step lies now, and which pixels it covers: every pixel maps back to the depth it
-    //    came from (inverse warp: no holes), with the gain the closed lumens above it make
-    float shortened = 0.0f, gain = 0.0f;
+    // 4. each step boundary's displacement down the beam [mm] and distances [mm] to the column's
+    //    nearest lumen whose walls (nearly) meet and to its nearest step that holds its shape
+    //    (disp_store; past the column's last step, the last's), for the second pass
+    float moved = shift;
+    vec2 since = vec2(1e9f);  // [mm] from the nearest above (meeting lumen, what holds its shape)
+    for (uint k = 0u; k < steps; ++k) {
+        vec4 w = scratch_load(c, k);
+        disp_store(c, k, vec4(moved, since, 0.0f));
+        float strain = is_lumen(w) ? w.z : solid_strain_after(w, stress, solved, 2u);
+        moved -= strain * h;
+        since = vec2(w.z >= DEFORM_MEETING ? 0.0f : since.x + h, holds_shape(w) ? 0.0f : since.y + h);
+    }
+    for (uint k = steps; k <= p.max_steps; ++k) disp_store(c, k, vec4(moved, since, 0.0f));
+    vec2 until = vec2(1e9f);  // [mm] to the nearest below
+    for (uint k = steps; k > 0u; --k) {
+        vec4 w = scratch_load(c, k - 1u);
+        until = vec2(w.z >= DEFORM_MEETING ? 0.0f : until.x + h, holds_shape(w) ? 0.0f : until.y + h);
+        vec4 d = disp_load(c, k - 1u);
+        disp_store(c, k - 1u, vec4(d.x, min(vec2(d.y, d.z), until), 0.0f));
+    }
+}
+
+// How far step boundary k of column c moved [mm], spread sideways: a lumen that closes drags the
+// tissue around it along, over a width that grows with the distance from it (as a load spreads in
+// an elastic solid), so the sinking above a closed vein fades out to the sides instead of stopping
+// at its edge. What fixes a boundary's place takes no spread: the skin (which lies on the probe),
+// the deep end, and a lumen's wall, so the spread's standard deviation is DEFORM_SPREAD times the
+// distance to the nearest of them, up to DEFORM_SPREAD_MAX_MM. A lumen that closes (DEFORM_MEETING)
+// counts in its own columns only: its walls must meet, and its neighbours are what the spread
+// drags along; what holds its shape (an artery, which keeps its round lumen; bone) counts from the
+// columns around it too (looked for at 1, 2, 4, ... columns), so the tissue between it and a
+// closing vein shears gradually. `fixed_mm`: the distance to the skin or the deep end. Gaussian weights at seven points
+// over +-2 standard deviations, the neighbours interpolated.
+float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
+{
+    vec4 own = disp_load(c, k);
+    float dist = min(min(own.y, own.z), fixed_mm);
+    float reach = min(dist, DEFORM_SPREAD_MAX_MM / DEFORM_SPREAD);  // no nearer lumen matters beyond
+    for (uint o = 1u; o < p.columns && float(o) * p.pixel_x_mm < reach; o *= 2u) {
+        float dx = float(o) * p.pixel_x_mm;
+        if (c >= o) dist = min(dist, sqrt(dx * dx + disp_load(c - o, k).z * disp_load(c - o, k).z));
+        if (c + o < p.columns) dist = min(dist, sqrt(dx * dx + disp_load(c + o, k).z * disp_load(c + o, k).z));
+    }
+    float sigma = min(DEFORM_SPREAD * dist, DEFORM_SPREAD_MAX_MM) / p.pixel_x_mm;  // [columns]
+    if (sigma < 0.25f) return own.x;
+    float last = float(p.columns - 1u), sum = own.x, weights = 1.0f;
+    for (int t = 1; t <= 3; ++t) {
+        float weight = exp2(-float(t * t) * 0.3206f);  // exp(-(2t/3)^2 / 2)
+        for (int side = -1; side <= 1; side += 2) {
+            float u = clamp(float(c) + float(side * t) * sigma * (2.0f / 3.0f), 0.0f, last);
+            uint i = uint(u);
+            uint j = min(i + 1u, p.columns - 1u);
+            sum += weight * mix(disp_load(i, k).x, disp_load(j, k).x, u - float(i));
+            weights += weight;
+        }
+    }
+    return sum / weights;
+}
+
+// The second pass, once every column has been solved: the columns' displacements spread sideways
+// (deform_spread), then each pixel of the column mapped back to the depth it came from (inverse
+// warp: no holes), with the gain the closed lumens above it make.
+void deform_column_map(uint c, DeformParams p)
+{
+    vec2 profile = deform_profile(c);
+    float skin_y = profile.x, shift = profile.y;
+    float h = p.step_mm;
+    uint steps = uint(clamp(ceil((p.depth_mm - skin_y) / h), 0.0f, float(p.max_steps)));
     uint r = 0u;
     while (r < p.rows && pixel_y(r, p.pixel_y_mm) < skin_y + shift) {  // the gel above the skin moves with it
         map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - shift, 0.0f));
         ++r;
     }
+    float gain = 0.0f;
+    float top = skin_y + shift;  // where step k's upper boundary lies now
     for (uint k = 0u; k < steps && r < p.rows; ++k) {
-        vec4 w = scratch_load(c, k);
-        float pressure_strain = solid_strain(w.x, w.y, stress);
-        float strain = w.z != 0.0f ? w.z : pressure_strain + dir * min(w.x * w.w * sigma, w.y - dir * pressure_strain);
-        float top = skin_y + float(k) * h + shift - shortened;
-        float length = h * (1.0f - strain);
-        while (r < p.rows && pixel_y(r, p.pixel_y_mm) < top + length) {
+        // the boundary below step k, which lies (k + 1) h from the skin and steps - k - 1 from the deep end
+        float below = deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
+        float bottom = skin_y + float(k + 1u) * h + below;
+        float length = bottom - top;
+        while (r < p.rows && pixel_y(r, p.pixel_y_mm) < bottom) {
             float f = length > 0.0f ? clamp((pixel_y(r, p.pixel_y_mm) - top) / length, 0.0f, 1.0f) : 0.0f;
             map_store(r * p.columns + c, vec2(skin_y + (float(k) + f) * h, gain));
             ++r;
         }
-        shortened += strain * h;
-        gain += w.z != 0.0f ? w.w : 0.0f;
+        top = max(top, bottom);  // a boundary the spread moved above the last one folds nothing back
+        vec4 w = scratch_load(c, k);
+        gain += is_lumen(w) ? w.w : 0.0f;
     }
-    float rest = shift - shortened;  // what the column could not take up moves the tissue below
+    float rest = disp_load(c, steps).x;  // what the column could not take up moves the tissue below
     while (r < p.rows) {
         map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - rest, gain));
         ++r;

@@ -56,7 +56,7 @@ void main()
                 left = t.left == first + k ? taps[k] : left;
                 right = t.right == first + k ? taps[k] : right;
             }
-            m = mix(left, right, t.right_weight);
+            m = map_between(left, right, t.right_weight);
         }
         vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
         float grey = 0.0;

@@ -89,6 +89,17 @@ KERNEL_FN MapTap map_tap(uint c, SliceParams p)
     return t;
 }
 
+// The deform map between two of its columns (map_tap's), lerped; but where the two columns' sources
+// lie further apart than a smooth field puts neighbours (SLICE_MAP_JUMP_MM), they straddle a closed
+// lumen's meeting walls, one column mapping above it and the other below: a lerp would land in the
+// closed lumen and draw a dark seam where the walls meet, so the nearer column's source serves.
+#define SLICE_MAP_JUMP_MM 1.0f
+KERNEL_FN vec2 map_between(vec2 left, vec2 right, float right_weight)
+{
+    if (abs(left.x - right.x) > SLICE_MAP_JUMP_MM) return right_weight < 0.5f ? left : right;
+    return mix(left, right, right_weight);
+}
+
 // The words a row of the displayed image takes.
 KERNEL_FN uint slice_words(uint columns) { return (columns + uint(SLICE_RUN) - 1u) / uint(SLICE_RUN); }
 

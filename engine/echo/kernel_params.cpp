@@ -126,7 +126,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                 float(ScanSpec{}.tgc_db_per_cm_mhz),  // the time-gain compensation the volume was made with
                 float(kLinearProbe.frequency_mhz),
                 labelled ? 0u : DEFORM_PAPER_LINEAR,
-                0u};
+                DEFORM_SOLVE};
     k.slice = {probe_to_index, plane.columns, plane.rows, px, py, float(plane.width_mm), warped ? SLICE_WARPED : 0u, map_columns, map_step};
     k.post.columns = plane.columns;
     k.post.rows = plane.rows;

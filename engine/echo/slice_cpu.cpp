@@ -79,7 +79,7 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
                 const std::size_t row_start = std::size_t(r) * p.map_columns;
                 const vec2 left(map[2 * (row_start + t.left)], map[2 * (row_start + t.left) + 1]);
                 const vec2 right(map[2 * (row_start + t.right)], map[2 * (row_start + t.right) + 1]);
-                const vec2 m = mix(left, right, t.right_weight);
+                const vec2 m = map_between(left, right, t.right_weight);
                 y = m.x;
                 out.gain[i] = m.y;
             }

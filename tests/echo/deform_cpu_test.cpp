@@ -1,14 +1,17 @@
 // The deform stage's model on the CPU twin (compute/deform_column.h run as C++): the stress under
 // the face against Newmark's closed form, the paper's linear deformation against its analytic map,
-// and a probe at rest or lifted off the skin leaving the image as the volume has it.
+// a probe at rest or lifted off the skin leaving the image as the volume has it, and a closing
+// vein's walls meeting while the tissue around it sinks without a seam.
 #include "echo/deform_cpu.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "deform_bindings.h"
+#include "slice_bindings.h"
 #include "echo/echo_image_cpu.hpp"
 #include "echo/kernel_params.hpp"
 #include "echo/slice_cpu.hpp"
@@ -116,6 +119,93 @@ TEST(DeformCpu, AProbeLiftedOffTheSkinLeavesTheImageUndeformed)
         EXPECT_EQ(pressed.rgba, undeformed.rgba) << "lifted " << lift << " mm";
         EXPECT_EQ(pressed.labels, undeformed.labels);
     }
+}
+
+// Muscle with a vein's lumen 10 mm across, centred 20 mm under the skin, pressed 6 mm in and hard
+// enough to close it: the map of the Flat plane (0.5 mm pixels and columns).
+struct PressedVein : Flat {
+    static constexpr double kCentreY = 14, kRadius = 5;
+    static constexpr float kSkinMm = 6, kPressureKpa = 30;  // the skin 6 mm above the face, pressed onto it
+    std::vector<glm::vec2> map;
+    explicit PressedVein(const TissueTable& tissues, bool vein = true)
+    {
+        io::Volume labels = grid;
+        std::fill(labels.data.begin(), labels.data.end(), std::uint8_t(Tissue::muscle));
+        for (std::size_t k = 0; k < labels.size[2]; ++k)
+            for (std::size_t j = 0; j < labels.size[1]; ++j)
+                for (std::size_t i = 0; i < labels.size[0]; ++i) {
+                    const glm::dvec3 p = labels.index_to_world(glm::dvec3(double(i), double(j), double(k)));
+                    if (vein && std::hypot(p.x, p.y - kCentreY) < kRadius) labels.data[labels.index(i, j, k)] = std::uint8_t(Tissue::vein_lumen);
+                }
+        EchoFrame frame;
+        frame.columns.assign(plane.columns, {-kSkinMm, kSkinMm});
+        frame.skin_pressure_kpa = kPressureKpa;
+        const KernelParams k = make_kernel_params(grid, plane, frame, {}, {}, true);
+        map = deform_cpu(&labels, frame.columns, tissues, k.deform);
+    }
+    double x_of(std::uint32_t c) const { return (c + 0.5) * plane.pixel_x_mm() - 20; }
+    // where image pixel (c, r) comes from [mm]
+    double source(std::uint32_t c, std::uint32_t r) const { return map[std::size_t(r) * plane.columns + c].x; }
+};
+
+TEST(DeformCpu, AClosingVeinsWallsMeet)
+{
+    const TissueTable tissues = tissue_mechanics({});
+    const PressedVein v(tissues);
+    // where the pressure that reaches the lumen's floor closes it fully, no pixel comes from inside
+    // it, but within a walk step and a voxel (0.5 mm each: where the labels put the wall) of a wall
+    int closed_columns = 0;
+    for (std::uint32_t c = 0; c < v.plane.columns; ++c) {
+        const double x = v.x_of(c);
+        if (std::abs(x) >= 0.9 * v.kRadius) continue;
+        const double half = std::sqrt(v.kRadius * v.kRadius - x * x);
+        const float floor_depth = float(v.kSkinMm + v.kCentreY + half);
+        const float reaching = v.kPressureKpa * kernels::face_influence(float(x), floor_depth, 40, 10);
+        if (kernels::lumen_closure(tissues[int(Tissue::vein_lumen)], reaching, 0) < 0.999f) continue;
+        ++closed_columns;
+        for (std::uint32_t r = 0; r < v.plane.rows; ++r) {
+            const double s = v.source(c, r);
+            EXPECT_FALSE(s > v.kCentreY - half + 1.0 && s < v.kCentreY + half - 1.0)
+                << "column at " << x << " mm, row " << r << ": from " << s << " mm, the lumen " << v.kCentreY - half << ".." << v.kCentreY + half;
+        }
+    }
+    EXPECT_GT(closed_columns, 12);  // most of the vein's 18 columns
+}
+
+TEST(DeformCpu, TheTissueAboveAClosingVeinSinksAndDragsItsNeighboursAlong)
+{
+    const PressedVein v(tissue_mechanics({})), none(tissue_mechanics({}), false);
+    // the image row that, without the vein, shows the tissue 2 mm above its top: how much shallower
+    // its tissue comes from with the vein, i.e. how far it sank into the closed lumen, across the image
+    std::uint32_t r = 0;
+    while (none.source(v.plane.columns / 2, r) < v.kCentreY - v.kRadius - 2) ++r;
+    std::vector<double> sank(v.plane.columns);
+    for (std::uint32_t c = 0; c < v.plane.columns; ++c) sank[c] = none.source(c, r) - v.source(c, r);
+
+    const auto at = [&](double x) { return sank[std::uint32_t((x + 20) / v.plane.pixel_x_mm())]; };
+    EXPECT_GT(at(0), 1.0);  // above the vein: sunk by mm
+    // beside it, dragged along, less the further out; far out, not at all
+    EXPECT_GT(at(v.kRadius + 2), 0.1 * at(0));
+    EXPECT_LT(at(v.kRadius + 2), 0.8 * at(0));
+    EXPECT_LT(at(v.kRadius + 6), at(v.kRadius + 2));
+    EXPECT_LT(std::abs(at(-15)), 0.05 * at(0));
+    // and no seam: neighbouring columns (0.5 mm apart) differ by a fraction of the sinking
+    for (std::uint32_t c = 1; c < v.plane.columns; ++c) EXPECT_LT(std::abs(sank[c] - sank[c - 1]), 0.15 * at(0)) << "at " << v.x_of(c) << " mm";
+}
+
+TEST(SliceCpu, BetweenMapColumnsTheSourceNeverFallsIntoAClosedLumen)
+{
+    using kernels::map_between;
+    // two map columns either side of a closed lumen's end: one maps a row to the wall above the
+    // lumen (12 mm), the other to the wall below (17 mm); a pixel between them takes the nearer
+    // one's source (a lerp would put it at 14.5 mm, inside the lumen), and its gain with it
+    const glm::vec2 above(12.0f, 0.0f), below(17.0f, -3.0f);
+    EXPECT_EQ(map_between(above, below, 0.3f), above);
+    EXPECT_EQ(map_between(above, below, 0.7f), below);
+    // columns of a smooth field are lerped
+    const glm::vec2 a(12.0f, 0.0f), b(12.4f, -1.0f);
+    EXPECT_NEAR(map_between(a, b, 0.25f).x, 12.1f, 1e-6f);
+    EXPECT_NEAR(map_between(a, b, 0.25f).y, -0.25f, 1e-6f);
 }
 
 TEST(SliceCpu, TheUndeformedSliceIsATrilinearResamplingOfTheVolume)
