@@ -11,7 +11,8 @@ layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 
 layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
 layout(std430, binding = DEFORM_SCRATCH_BINDING) buffer Scratch { uvec2 scratch[]; };
 layout(std430, binding = DEFORM_MAP_BINDING) writeonly buffer Map { vec2 map[]; };
-layout(std430, binding = DEFORM_DISP_BINDING) buffer Disp { vec4 disp[]; };
+layout(std430, binding = DEFORM_MOVED_BINDING) buffer Moved { float moved[]; };
+layout(std430, binding = DEFORM_WALLS_BINDING) buffer Walls { uint walls[]; };
 layout(push_constant) uniform Push { DeformParams params; };
 
 uint deform_label(vec3 index)
@@ -31,8 +32,10 @@ vec4 scratch_load(uint column, uint step) { return scratch_unpack(scratch[step *
 void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = scratch_pack(v); }
 void map_store(uint pixel, vec2 v) { map[pixel] = v; }
 // step-major too: a boundary's neighbours, which deform_spread reads, lie side by side
-vec4 disp_load(uint column, uint boundary) { return disp[boundary * params.columns + column]; }
-void disp_store(uint column, uint boundary, vec4 v) { disp[boundary * params.columns + column] = v; }
+float moved_load(uint column, uint boundary) { return moved[boundary * params.columns + column]; }
+void moved_store(uint column, uint boundary, float v) { moved[boundary * params.columns + column] = v; }
+vec2 walls_load(uint column, uint boundary) { return unpackHalf2x16(walls[boundary * params.columns + column]); }
+void walls_store(uint column, uint boundary, vec2 v) { walls[boundary * params.columns + column] = packHalf2x16(v); }
 
 #include "deform_column.h"
 

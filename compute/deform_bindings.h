@@ -49,7 +49,8 @@ namespace echosim::kernels {
 #define DEFORM_TISSUES_BINDING 2  // uniform: TissueMechanics per tissue code
 #define DEFORM_SCRATCH_BINDING 3  // uvec2 per column per walk step, scratch_pack's (the kernel's own working memory)
 #define DEFORM_MAP_BINDING 4      // vec2 per pixel: (source y [mm], gain [dB])
-#define DEFORM_DISP_BINDING 5     // vec4 per column per step boundary (max_steps + 1): how far it moved, distances to lumens [mm]
+#define DEFORM_MOVED_BINDING 5    // float per column per step boundary (max_steps + 1): how far it moved [mm]
+#define DEFORM_WALLS_BINDING 6    // uint per column per step boundary: its distances to what fixes it [mm], two half floats
 #define DEFORM_TISSUE_CODES 16
 
 // how far from a closing lumen the tissue sinking and rising into it stretches (halving distance

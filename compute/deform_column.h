@@ -8,9 +8,12 @@
 //   vec4 scratch_load(uint column, uint step) / void scratch_store(uint column, uint step, vec4 v)
 //                                          (where a step's entry lies is the includer's: the GPU
 //                                          interleaves the columns, the CPU keeps each together)
-//   vec4 disp_load(uint column, uint boundary) / void disp_store(uint column, uint boundary, vec4 v)
-//                                          a step boundary's (displacement, distances to lumens, -)
-//                                          [mm], max_steps + 1 a column
+//   float moved_load(uint column, uint boundary) / void moved_store(uint column, uint boundary, float v)
+//                                          how far a step boundary moved down the beam [mm]
+//   vec2 walls_load(uint column, uint boundary) / void walls_store(uint column, uint boundary, vec2 v)
+//                                          its distances [mm] to what fixes it (walk 4), kept as
+//                                          half floats (packHalf2x16) by both includers
+//                                          (both max_steps + 1 boundaries a column)
 //   void map_store(uint pixel, vec2 v)     (source y [mm], gain [dB]) of pixel = row * columns + column
 // and runs deform_column_solve for every column, then (once all are done: deform_column_map reads
 // the neighbours' displacements) deform_column_map for every column.
@@ -124,23 +127,26 @@ void deform_column_solve(uint c, DeformParams p)
 
     // 4. each step boundary's displacement down the beam [mm] and distances [mm] to the column's
     //    nearest lumen whose walls (nearly) meet and to its nearest step that holds its shape
-    //    (disp_store; past the column's last step, the last's), for the second pass
+    //    (moved_store, walls_store; past the column's last step, the last's), for the second pass
     float moved = shift;
     vec2 since = vec2(1e9f);  // [mm] from the nearest above (meeting lumen, what holds its shape)
     for (uint k = 0u; k < steps; ++k) {
         vec4 w = scratch_load(c, k);
-        disp_store(c, k, vec4(moved, since, 0.0f));
+        moved_store(c, k, moved);
+        walls_store(c, k, since);
         float strain = is_lumen(w) ? w.z : solid_strain_after(w, stress, solved, 2u);
         moved -= strain * h;
         since = vec2(w.z >= DEFORM_MEETING ? 0.0f : since.x + h, holds_shape(w) ? 0.0f : since.y + h);
     }
-    for (uint k = steps; k <= p.max_steps; ++k) disp_store(c, k, vec4(moved, since, 0.0f));
+    for (uint k = steps; k <= p.max_steps; ++k) {
+        moved_store(c, k, moved);
+        walls_store(c, k, since);
+    }
     vec2 until = vec2(1e9f);  // [mm] to the nearest below
     for (uint k = steps; k > 0u; --k) {
         vec4 w = scratch_load(c, k - 1u);
         until = vec2(w.z >= DEFORM_MEETING ? 0.0f : until.x + h, holds_shape(w) ? 0.0f : until.y + h);
-        vec4 d = disp_load(c, k - 1u);
-        disp_store(c, k - 1u, vec4(d.x, min(vec2(d.y, d.z), until), 0.0f));
+        walls_store(c, k - 1u, min(walls_load(c, k - 1u), until));
     }
 }
 
@@ -157,24 +163,25 @@ void deform_column_solve(uint c, DeformParams p)
 // over +-2 standard deviations, the neighbours interpolated.
 float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
 {
-    vec4 own = disp_load(c, k);
-    float dist = min(min(own.y, own.z), fixed_mm);
+    float own = moved_load(c, k);
+    vec2 walls = walls_load(c, k);
+    float dist = min(min(walls.x, walls.y), fixed_mm);
     float reach = min(dist, DEFORM_SPREAD_MAX_MM / DEFORM_SPREAD);  // no nearer lumen matters beyond
     for (uint o = 1u; o < p.columns && float(o) * p.pixel_x_mm < reach; o *= 2u) {
         float dx = float(o) * p.pixel_x_mm;
-        if (c >= o) dist = min(dist, sqrt(dx * dx + disp_load(c - o, k).z * disp_load(c - o, k).z));
-        if (c + o < p.columns) dist = min(dist, sqrt(dx * dx + disp_load(c + o, k).z * disp_load(c + o, k).z));
+        float left = c >= o ? walls_load(c - o, k).y : 1e9f, right = c + o < p.columns ? walls_load(c + o, k).y : 1e9f;
+        dist = min(dist, sqrt(dx * dx + min(left, right) * min(left, right)));
     }
     float sigma = min(DEFORM_SPREAD * dist, DEFORM_SPREAD_MAX_MM) / p.pixel_x_mm;  // [columns]
-    if (sigma < 0.25f) return own.x;
-    float last = float(p.columns - 1u), sum = own.x, weights = 1.0f;
+    if (sigma < 0.25f) return own;
+    float last = float(p.columns - 1u), sum = own, weights = 1.0f;
     for (int t = 1; t <= 3; ++t) {
         float weight = exp2(-float(t * t) * 0.3206f);  // exp(-(2t/3)^2 / 2)
         for (int side = -1; side <= 1; side += 2) {
             float u = clamp(float(c) + float(side * t) * sigma * (2.0f / 3.0f), 0.0f, last);
             uint i = uint(u);
             uint j = min(i + 1u, p.columns - 1u);
-            sum += weight * mix(disp_load(i, k).x, disp_load(j, k).x, u - float(i));
+            sum += weight * mix(moved_load(i, k), moved_load(j, k), u - float(i));
             weights += weight;
         }
     }
@@ -211,7 +218,7 @@ void deform_column_map(uint c, DeformParams p)
         vec4 w = scratch_load(c, k);
         gain += is_lumen(w) ? w.w : 0.0f;
     }
-    float rest = disp_load(c, steps).x;  // what the column could not take up moves the tissue below
+    float rest = moved_load(c, steps);  // what the column could not take up moves the tissue below
     while (r < p.rows) {
         map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - rest, gain));
         ++r;

@@ -15,8 +15,8 @@ using namespace echosim::kernels;
 class DeformColumns {
 public:
     DeformColumns(const io::Volume* labels, std::span<const ColumnProfile> profile, const TissueTable& tissues, std::vector<uvec2>& scratch,
-                  std::uint32_t max_steps, std::vector<glm::vec4>& disp, std::vector<glm::vec2>& map)
-        : labels_(labels), profile_(profile), tissues_(tissues), scratch_(scratch), max_steps_(max_steps), disp_(disp), map_(map)
+                  std::uint32_t max_steps, std::vector<float>& moved, std::vector<uint>& walls, std::vector<glm::vec2>& map)
+        : labels_(labels), profile_(profile), tissues_(tissues), scratch_(scratch), max_steps_(max_steps), moved_(moved), walls_(walls), map_(map)
     {
     }
 
@@ -38,15 +38,18 @@ private:
     vec4 scratch_load(uint column, uint step) const { return scratch_unpack(scratch_[column * max_steps_ + step]); }
     void scratch_store(uint column, uint step, vec4 v) { scratch_[column * max_steps_ + step] = scratch_pack(v); }
     void map_store(uint pixel, vec2 v) { map_[pixel] = v; }
-    vec4 disp_load(uint column, uint boundary) const { return disp_[column * (max_steps_ + 1) + boundary]; }
-    void disp_store(uint column, uint boundary, vec4 v) { disp_[column * (max_steps_ + 1) + boundary] = v; }
+    float moved_load(uint column, uint boundary) const { return moved_[column * (max_steps_ + 1) + boundary]; }
+    void moved_store(uint column, uint boundary, float v) { moved_[column * (max_steps_ + 1) + boundary] = v; }
+    vec2 walls_load(uint column, uint boundary) const { return unpackHalf2x16(walls_[column * (max_steps_ + 1) + boundary]); }
+    void walls_store(uint column, uint boundary, vec2 v) { walls_[column * (max_steps_ + 1) + boundary] = packHalf2x16(v); }
 
     const io::Volume* labels_;
     std::span<const ColumnProfile> profile_;
     const TissueTable& tissues_;
     std::vector<uvec2>& scratch_;  // max_steps_ entries a column
     std::size_t max_steps_;
-    std::vector<glm::vec4>& disp_;  // max_steps_ + 1 entries a column
+    std::vector<float>& moved_;  // max_steps_ + 1 entries a column
+    std::vector<uint>& walls_;   // the same
     std::vector<glm::vec2>& map_;
 };
 
@@ -60,9 +63,10 @@ std::vector<glm::vec2> deform_cpu(const io::Volume* labels, std::span<const Colu
                                     " columns");
     if (labels && labels->type != io::VoxelType::uint8) throw std::invalid_argument("deform: the label map is not uint8");
     std::vector<glm::uvec2> scratch(std::size_t(params.columns) * params.max_steps);
-    std::vector<glm::vec4> disp(std::size_t(params.columns) * (params.max_steps + 1));
+    std::vector<float> moved(std::size_t(params.columns) * (params.max_steps + 1));
+    std::vector<std::uint32_t> walls(moved.size());
     std::vector<glm::vec2> map(std::size_t(params.columns) * params.rows);
-    kernels_cpu::DeformColumns columns(labels, profile, tissues, scratch, params.max_steps, disp, map);
+    kernels_cpu::DeformColumns columns(labels, profile, tissues, scratch, params.max_steps, moved, walls, map);
     // the two passes of the two dispatches: the map reads the neighbours' solutions
     for (std::uint32_t c = 0; c < params.columns; ++c) columns.deform_column_solve(c, params);
     for (std::uint32_t c = 0; c < params.columns; ++c) columns.deform_column_map(c, params);

@@ -91,7 +91,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
       tissues_(ctx, sizeof(echo::TissueTable), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible),
       deform_(ctx, kernels::deform_comp, "deform.comp",
               {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
-               gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer},
+               gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
+               gpu::BindingKind::storage_buffer},
               sizeof(kernels::DeformParams)),
       slice_(ctx, kernels::slice_comp, "slice.comp",
              {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::texel_buffer,
@@ -100,7 +101,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
              0)
 {
     static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
-                      DEFORM_MAP_BINDING == 4 && DEFORM_DISP_BINDING == 5,
+                      DEFORM_MAP_BINDING == 4 && DEFORM_MOVED_BINDING == 5 && DEFORM_WALLS_BINDING == 6,
                   "deform bindings in the order declared above");
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
                       SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7,
@@ -131,7 +132,9 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         slot.row_texels = gpu::TexelView(ctx, slot.rows, VK_FORMAT_R32G32B32A32_SFLOAT, "the image rows' post parameters");
         slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * sizeof(kernels::uvec2), storage, gpu::MemoryUse::device_local);
-        slot.disp = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * (max_steps_ + 1) * 4 * sizeof(float), storage, gpu::MemoryUse::device_local);
+        const VkDeviceSize boundaries = VkDeviceSize(map_columns_) * (max_steps_ + 1);
+        slot.moved = gpu::Buffer(ctx, boundaries * sizeof(float), storage, gpu::MemoryUse::device_local);
+        slot.walls = gpu::Buffer(ctx, boundaries * sizeof(std::uint32_t), storage, gpu::MemoryUse::device_local);
         slot.map = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * plane_.rows * 2 * sizeof(float),
                                storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.map_texels = gpu::TexelView(ctx, slot.map, VK_FORMAT_R32G32_SFLOAT, "the deform map");
@@ -143,7 +146,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                                 {VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_ONE});
         deform_.bind(s, {gpu::Binding::sampled(volume_->labels(), volume_->nearest()), gpu::Binding::storage(slot.profile),
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map),
-                         gpu::Binding::storage(slot.disp)});
+                         gpu::Binding::storage(slot.moved), gpu::Binding::storage(slot.walls)});
         slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
                         gpu::Binding::texel(slot.map_texels), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
                         gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params), gpu::Binding::texel(slot.row_texels)});

@@ -117,7 +117,7 @@ private:
     struct Slot {
         gpu::Buffer profile, params, rows;  // host-visible, written when the slot is recorded
         gpu::TexelView row_texels;  // rows, as the slice kernel reads them
-        gpu::Buffer scratch, disp, map, grey, labels;
+        gpu::Buffer scratch, moved, walls, map, grey, labels;
         gpu::TexelView map_texels;  // the map as the slice kernel reads it
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
