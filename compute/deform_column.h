@@ -85,8 +85,13 @@ void deform_column_solve(uint c, DeformParams p)
     float pressed = 0.0f;  // [mm]
     for (uint k = 0u; k < steps; ++k) {
         float depth = (float(k) + 0.5f) * h;
-        vec4 at = p.probe_to_index * vec4(x, skin_y + depth, 0.0f, 1.0f);
-        TissueMechanics t = deform_tissue(linear ? 0u : deform_label(vec3(at)));
+        // the tissue at the step's quarters: a lumen in either makes it a lumen step, so where
+        // walls meet no more than a quarter step of blood on either side is left to show
+        vec4 upper = p.probe_to_index * vec4(x, skin_y + depth - 0.25f * h, 0.0f, 1.0f);
+        vec4 lower = p.probe_to_index * vec4(x, skin_y + depth + 0.25f * h, 0.0f, 1.0f);
+        TissueMechanics t = deform_tissue(linear ? 0u : deform_label(vec3(upper)));
+        TissueMechanics t_lower = deform_tissue(linear ? 0u : deform_label(vec3(lower)));
+        t = is_lumen_tissue(t) || !is_lumen_tissue(t_lower) ? t : t_lower;
         float influence = linear ? 1.0f : face_influence(x, depth, p.face_width_mm, p.face_length_mm);
         float closure = lumen_closure(t, p.skin_pressure_kpa * influence, p.pulse);
         closed += closure * h;
