@@ -23,9 +23,11 @@ struct KernelParams {
 };
 
 // The finest the deform stage resolves the tissue [mm], down a column and across the image: the
-// deformation is smooth but at the lumens' edges, which 0.2 mm places within a few pixels of a
-// 1024-row image; finer labels (0.1 mm) would cost the walk four times as much for that.
-inline constexpr double kDeformResolutionMm = 0.2;
+// deformation is smooth but at the lumens' edges, and those the walk places within a quarter step
+// (deform_column.h reads the labels at each step's quarters), 0.075 mm; the map is spread sideways
+// over millimetres anyway. The walk's cost goes with columns x steps: at 0.2 mm a 0.1 mm volume's
+// 1024² frame ran 60-85 fps on lavapipe, at 0.3 mm 106-130 (bench/RESULTS.md, 2026-11-26).
+inline constexpr double kDeformResolutionMm = 0.3;
 // The deform stage's step down a column [mm]: no finer than a pixel, nor than the label grid (the
 // labels are read at the nearest voxel: a finer walk reads the same voxel twice), nor than
 // kDeformResolutionMm.
