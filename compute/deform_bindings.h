@@ -67,7 +67,7 @@ namespace echosim::kernels {
 #define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)
 #define DEFORM_MAP 1u    // then the map, from the columns and their neighbours (deform_column_map)
 
-#define DEFORM_PAPER_LINEAR 1u  // no labels: one compliance, no decay with depth
+#define DEFORM_PAPER_LINEAR 1u  // no labels: one compliance, no decay with depth, no sideways spread
 
 // How one tissue deforms under the stress that reaches it.
 struct TissueMechanics {

@@ -169,6 +169,7 @@ void deform_column_solve(uint c, DeformParams p)
 float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
 {
     float own = moved_load(c, k);
+    if ((p.flags & DEFORM_PAPER_LINEAR) != 0u) return own;  // the paper's deformation is its columns'
     vec2 walls = walls_load(c, k);
     float dist = min(min(walls.x, walls.y), fixed_mm);
     float reach = min(dist, DEFORM_SPREAD_MAX_MM / DEFORM_SPREAD);  // no nearer lumen matters beyond

@@ -67,18 +67,23 @@ TEST(DeformCpu, WithoutLabelsIsThePapersLinearDeformation)
 {
     Flat f;
     EchoFrame frame;
-    const float skin = -6.0f, shift = 6.0f;  // the skin 6 mm above the face, pressed down onto it
-    frame.columns.assign(f.plane.columns, {skin, shift});
+    // the skin 6 mm above the face, pressed down onto it, and on one side of the image 3 mm further
+    // (each column on its own: no sideways spread)
+    const float skin = -6.0f;
+    const auto shift_at = [&](std::uint32_t c) { return c < f.plane.columns / 2 ? 6.0f : 9.0f; };
+    for (std::uint32_t c = 0; c < f.plane.columns; ++c) frame.columns.push_back({skin, shift_at(c)});
     frame.skin_pressure_kpa = 20;
     const KernelParams k = make_kernel_params(f.grid, f.plane, frame, {}, {}, false);
     const auto map = deform_cpu(nullptr, frame.columns, paper_linear_mechanics(), k.deform);
-    // uniform compression between the pressed skin (y = 0) and the image's depth (50 mm, held):
-    // a pixel at y came from y0 = skin + (y - (skin + shift)) (depth - skin) / (depth - skin - shift)
+    // uniform compression between the pressed skin (y = skin + shift) and the image's depth (50 mm,
+    // held): a pixel at y came from y0 = skin + (y - (skin + shift)) (depth - skin) / (depth - skin -
+    // shift); above the skin, the gel moved with it: y0 = y - shift
     const double depth = 50;
     for (std::uint32_t r = 0; r < f.plane.rows; ++r)
-        for (std::uint32_t c : {0u, 40u, 79u}) {
-            const double y = (r + 0.5) * f.plane.pixel_y_mm();
-            const double expected = skin + (y - (skin + shift)) * (depth - skin) / (depth - skin - shift);
+        for (std::uint32_t c : {0u, 38u, 39u, 40u, 41u, 79u}) {
+            const double y = (r + 0.5) * f.plane.pixel_y_mm(), shift = shift_at(c);
+            const double expected =
+                y < skin + shift ? y - shift : skin + (y - (skin + shift)) * (depth - skin) / (depth - skin - shift);
             ASSERT_NEAR(map[r * f.plane.columns + c].x, expected, 0.02) << "row " << r;
             ASSERT_EQ(map[r * f.plane.columns + c].y, 0.0f);
         }
