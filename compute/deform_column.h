@@ -164,8 +164,8 @@ void deform_column_solve(uint c, DeformParams p)
 // counts in its own columns only: its walls must meet, and its neighbours are what the spread
 // drags along; what holds its shape (an artery, which keeps its round lumen; bone) counts from the
 // columns around it too (looked for at 1, 2, 4, ... columns), so the tissue between it and a
-// closing vein shears gradually. `fixed_mm`: the distance to the skin or the deep end. Gaussian weights at seven points
-// over +-2 standard deviations, the neighbours interpolated.
+// closing vein shears gradually. `fixed_mm`: the distance to the skin or the deep end. Gaussian
+// weights at seven points over +-2 standard deviations, the neighbours interpolated.
 float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
 {
     float own = moved_load(c, k);
@@ -211,7 +211,7 @@ void deform_column_map(uint c, DeformParams p)
     float gain = 0.0f;
     float top = skin_y + shift;  // where step k's upper boundary lies now
     for (uint k = 0u; k < steps && r < p.rows; ++k) {
-        // the boundary below step k, which lies (k + 1) h from the skin and steps - k - 1 from the deep end
+        // the boundary below step k: (k + 1) h from the skin, (steps - k - 1) h from the deep end
         float below = deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
         float bottom = skin_y + float(k + 1u) * h + below;
         float length = bottom - top;
