@@ -62,6 +62,10 @@ float remainder_level(uint c, uint steps, float h, float stress, float amount, v
     return sigma;
 }
 
+// The steps of a column whose skin lies at skin_y: from the skin to the image's depth, as many as the
+// scratch holds. Both passes walk the same ones.
+uint deform_steps(float skin_y, DeformParams p) { return uint(clamp(ceil((p.depth_mm - skin_y) / p.step_mm), 0.0f, float(p.max_steps))); }
+
 // The first pass, one column on its own: its steps' tissues, strains and displacements.
 void deform_column_solve(uint c, DeformParams p)
 {
@@ -70,7 +74,7 @@ void deform_column_solve(uint c, DeformParams p)
     float skin_y = profile.x, shift = profile.y;
     float h = p.step_mm;
     bool linear = (p.flags & DEFORM_PAPER_LINEAR) != 0u;
-    uint steps = uint(clamp(ceil((p.depth_mm - skin_y) / h), 0.0f, float(p.max_steps)));
+    uint steps = deform_steps(skin_y, p);
 
     // 1. down the column from the skin: each step's tissue, its compliance under the stress that
     //    reaches it, and how much of it a lumen loses to the pressure there. A scratch entry is
@@ -202,7 +206,7 @@ void deform_column_map(uint c, DeformParams p)
     vec2 profile = deform_profile(c);
     float skin_y = profile.x, shift = profile.y;
     float h = p.step_mm;
-    uint steps = uint(clamp(ceil((p.depth_mm - skin_y) / h), 0.0f, float(p.max_steps)));
+    uint steps = deform_steps(skin_y, p);
     uint r = 0u;
     while (r < p.rows && pixel_y(r, p.pixel_y_mm) < skin_y + shift) {  // the gel above the skin moves with it
         map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - shift, 0.0f));
