@@ -121,6 +121,8 @@ CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& g, CgV
         next_direction(grid.n, v.z, 0.0f, v.direction, begin, end);  // d = z
     });
     const double rhs_norm = std::max(std::sqrt(bb), 1e-30);
+    // the residual is a momentum (b = h f): the absolute floor on the force is h times it
+    const double stop_rr = std::pow(std::max(options.cg_tolerance * rhs_norm, options.time_step * options.cg_absolute_tolerance_N), 2);
 
     for (; out.iterations < options.cg_max_iterations; ++out.iterations) {
         out.relative_residual = std::sqrt(rr) / rhs_norm;
@@ -128,7 +130,7 @@ CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& g, CgV
             out.finite = false;
             return out;
         }
-        if (out.relative_residual <= options.cg_tolerance) break;
+        if (rr <= stop_rr) break;
         const double pap = system_product(model, g, v.direction.data(), v.product.data(), v.rows, team);
         if (!std::isfinite(pap)) {  // (a NaN in the preconditioner or the product would pass for convergence below)
             out.finite = false;

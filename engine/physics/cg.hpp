@@ -27,7 +27,8 @@ struct CgResult {
 };
 
 // Solves A dv = rhs for vectors.dv, from its value on entry (rhs is zero at fixed nodes), to
-// model.options' tolerance; the passes are shared by `team`.
+// model.options' tolerances (relative to the right-hand side, or the absolute floor on the force
+// left unbalanced); the passes are shared by `team`.
 CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& system, CgVectors& vectors, ForkJoin& team);
 
 }  // namespace echosim::physics

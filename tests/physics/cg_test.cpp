@@ -45,6 +45,35 @@ TEST_P(CgThreads, SolvesTheAssembledSystem)
     EXPECT_LT((x - exact).norm(), 1e-3 * exact.norm());
 }
 
+// Tissue at rest leaves a right-hand side of round-off: the solve stops at once on the absolute
+// floor (PhysicsOptions::cg_absolute_tolerance_N) instead of chasing it to the relative tolerance.
+TEST_P(CgThreads, ARoundOffRightHandSideStopsOnTheAbsoluteFloor)
+{
+    DeformedPatch d(GetParam());
+    const double h = d.options.time_step;
+    prepare_system(d.compiled, d.state, d.state.system, d.team);
+    // a force imbalance of about 1e-9 N over the patch, as a settled patch shows
+    Eigen::VectorXd b = h * d.state.force * (1e-9 / d.state.force.norm());
+    for (std::size_t i = 0; i < d.model.node_count(); ++i)
+        if (d.model.boundary[i]) b.segment<3>(3 * Eigen::Index(i)).setZero();
+    const auto solve = [&](double floor_N) {
+        PhysicsOptions o = d.options;
+        o.cg_absolute_tolerance_N = floor_N;
+        const auto model = compile_model(d.model, o);
+        d.state.cg.rhs = planes_of(b);
+        std::fill(d.state.cg.dv.begin(), d.state.cg.dv.end(), 0.0f);
+        return conjugate_gradient(*model, d.state.system, d.state.cg, d.team);
+    };
+    const CgResult floored = solve(1e-6);
+    EXPECT_TRUE(floored.finite);
+    EXPECT_EQ(floored.iterations, 0);
+    EXPECT_EQ(interleaved_of(d.state.cg.dv).norm(), 0.0);
+    // without the floor the same system is solved to the relative tolerance, as any other
+    const CgResult relative = solve(0.0);
+    EXPECT_GT(relative.iterations, 3);
+    EXPECT_LE(relative.relative_residual, d.options.cg_tolerance);
+}
+
 TEST_P(CgThreads, ANanInTheSystemIsReportedNotTakenForConvergence)
 {
     DeformedPatch d(GetParam());

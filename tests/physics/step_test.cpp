@@ -66,7 +66,9 @@ TEST(Physics, StaticEquilibriumUnderAKnownLoadMatchesTheInteractionModel)
     const double load = 6.0;
     s.external.segment<3>(3 * Eigen::Index(k)) = -load * normal_of(m, k);
     for (int i = 0; i < 4000; ++i) sim.step();
-    EXPECT_LT(s.v.norm(), 1e-6);  // at rest
+    // at rest: the solver leaves up to PhysicsOptions::cg_absolute_tolerance_N (1e-6 N) unbalanced,
+    // which the node's damping turns into a creep of some 1e-5 mm/s (a micrometre in a minute)
+    EXPECT_LT(s.v.norm(), 1e-4);
     for (std::size_t i = 0; i < m.node_count(); ++i) {
         if (i == k) continue;
         ASSERT_EQ(s.x.segment<3>(3 * Eigen::Index(i)), rest_of(m, i)) << "fixed node " << i << " moved";
