@@ -222,8 +222,9 @@ int run_window(const RunArgs& args)
         swapchains = presenter.swapchain_generation();
         scene.session.stop();
         const physics::RunnerStats st = scene.session.physics_stats();
-        std::printf("echosim run: physics stepped %lld times (%lld late), last probe force %.2f N\n", static_cast<long long>(st.steps),
-                    static_cast<long long>(st.overruns), scene.session.view().probe_force_N);
+        std::printf("echosim run: physics stepped %lld times (%lld late, %lld asleep), last probe force %.2f N\n",
+                    static_cast<long long>(st.steps), static_cast<long long>(st.overruns), static_cast<long long>(st.asleep),
+                    scene.session.view().probe_force_N);
         if (haptics::HapticLoop* loop = scene.session.haptic_loop()) {
             const haptics::PeriodStats h = loop->stats();
             std::printf("echosim run: haptic loop ticked %lld times; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines\n",

@@ -62,6 +62,7 @@ void PhysicsRunner::step_once()
     for (int i = 0; i < model_->options.steps_per_publish; ++i) {
         state_.probe = in_.read();
         step(*model_, state_, team_);
+        if (state_.last.asleep) asleep_.fetch_add(1, std::memory_order_relaxed);
     }
 
     SurfaceSnapshot& s = out_.write_slot();

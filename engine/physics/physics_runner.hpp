@@ -52,6 +52,7 @@ struct SurfaceSnapshot {
 struct RunnerStats {
     std::int64_t steps = 0;
     std::int64_t overruns = 0;  // steps that started later than one period after they were due
+    std::int64_t asleep = 0;    // steps the tissue slept through (PhysicsOptions::sleep_speed)
     std::int64_t refused_commands = 0;  // probe commands with a NaN, infinity or bad rotation
 };
 
@@ -80,7 +81,7 @@ public:
     // real time: a thread stepping every options.time_step of wall-clock time
     void start();
     void stop();
-    RunnerStats stats() const { return {steps_.load(), overruns_.load(), refused_.load()}; }
+    RunnerStats stats() const { return {steps_.load(), overruns_.load(), asleep_.load(), refused_.load()}; }
     // Runs in the stepping thread after each step is published, with the step's number: for
     // instrumentation, and for the test that stalls the physics to show the haptic loop does not
     // wait for it. Set it while no thread steps.
@@ -102,7 +103,7 @@ private:
     std::function<void(std::int64_t)> after_step_;
     std::thread thread_;
     std::atomic<bool> running_{false};
-    std::atomic<std::int64_t> steps_{0}, overruns_{0}, refused_{0};
+    std::atomic<std::int64_t> steps_{0}, overruns_{0}, asleep_{0}, refused_{0};
 };
 
 }  // namespace echosim::physics

@@ -37,24 +37,70 @@ void add_velocity_change(const CompiledModel& model, TissueState& s, ForkJoin& t
     });
 }
 
-// x += h v, fixed nodes held still; true if a node has exploded (a NaN, or faster than
-// options.max_speed).
-bool advance(const CompiledModel& model, TissueState& s, ForkJoin& team)
+struct Advanced {
+    bool exploded = false;    // a NaN, or a node faster than options.max_speed
+    double max_speed2 = 0;    // the fastest node's squared speed [mm^2/s^2]
+};
+
+// x += h v, fixed nodes held still.
+Advanced advance(const CompiledModel& model, TissueState& s, ForkJoin& team)
 {
     const double h = model.options.time_step;
     const double limit2 = model.options.max_speed * model.options.max_speed;
-    std::array<std::uint8_t, ForkJoin::kMaxParts> exploded{};
+    std::array<Advanced, ForkJoin::kMaxParts> parts{};
     team.run([&](int part) {
         const auto [begin, end] = part_nodes(model.grid, part, team.parts());
+        Advanced& a = parts[std::size_t(part)];
         for (std::size_t i = begin; i < end; ++i) {
             auto v = s.v.segment<3>(3 * Eigen::Index(i));
             if (model.fixed(i)) v.setZero();
             auto x = s.x.segment<3>(3 * Eigen::Index(i));
             x += h * v;
-            if (!(v.squaredNorm() <= limit2) || !x.allFinite()) exploded[std::size_t(part)] = 1;  // (a NaN fails every comparison)
+            const double v2 = v.squaredNorm();
+            if (!(v2 <= limit2) || !x.allFinite()) a.exploded = true;  // (a NaN fails every comparison)
+            a.max_speed2 = std::max(a.max_speed2, v2);
         }
     });
-    return std::any_of(exploded.begin(), exploded.end(), [](std::uint8_t e) { return e != 0; });
+    Advanced all;
+    for (int part = 0; part < team.parts(); ++part) {
+        all.exploded = all.exploded || parts[std::size_t(part)].exploded;
+        all.max_speed2 = std::max(all.max_speed2, parts[std::size_t(part)].max_speed2);
+    }
+    return all;
+}
+
+// Whether the probe at `now` is still where it was at `then` (PhysicsOptions::sleep_probe_mm), and
+// all but at rest.
+bool probe_still(const CompiledModel& model, const contact::ProbeState& now, const contact::ProbeState& then)
+{
+    const PhysicsOptions& o = model.options;
+    if (now.active != then.active) return false;
+    if (!now.active) return true;  // no probe, no contact: where it is does not matter
+    // a turn by a small angle a moves the face's corners by about a times its half diagonal
+    const double half_diagonal = 0.5 * std::hypot(model.probe.face_width, model.probe.face_thickness);
+    const double turn = 2.0 * (then.orientation.conjugate() * now.orientation).vec().norm();
+    return (now.position - then.position).norm() + turn * half_diagonal <= o.sleep_probe_mm && now.velocity.norm() <= o.sleep_speed;
+}
+
+// Whether the tissue sleeps through this step: still for options.sleep_after, under a probe still
+// where it was and the same load (PhysicsOptions::sleep_speed).
+bool sleeps(const CompiledModel& model, const TissueState& s)
+{
+    const PhysicsOptions& o = model.options;
+    return o.sleep_after > 0 && s.still_for >= o.sleep_after && probe_still(model, s.probe, s.still_probe) && s.external == s.still_external;
+}
+
+// After a step: how long the tissue has been still, under the probe and the load it was still under.
+void track_stillness(const CompiledModel& model, TissueState& s, double max_speed2)
+{
+    const double v = model.options.sleep_speed;
+    if (max_speed2 <= v * v && probe_still(model, s.probe, s.still_probe) && s.external == s.still_external) {
+        s.still_for += model.options.time_step;
+        return;
+    }
+    s.still_for = 0;
+    s.still_probe = s.probe;
+    s.still_external = s.external;  // (the size is the state's: no allocation)
 }
 
 // The wiring a step relies on: a team of the model's size and a state made for the model.
@@ -77,6 +123,15 @@ void step(const CompiledModel& model, TissueState& s, ForkJoin& team)
     const PhysicsOptions& options = model.options;
     const double h = options.time_step;
     const bool relinearise = options.jacobian == JacobianMode::updated || !s.constant_jacobian_ready;
+    if (sleeps(model, s)) {
+        if (!s.last.asleep) s.v.setZero();  // at rest, as it falls asleep (as Box2D's bodies do)
+        s.time += h;
+        ++s.steps;
+        s.last.asleep = true;
+        s.last.cg_iterations = 0;  // the contacts and the probe's force stay as they were
+        return;
+    }
+    s.last.asleep = false;
 
     // 1-2: contact and forces (the contact stage adds its penalty forces after the internal ones)
     accumulate_forces(model, s, team, relinearise);
@@ -101,13 +156,15 @@ void step(const CompiledModel& model, TissueState& s, ForkJoin& team)
     }
 
     // 4: positions, and the guard
-    const bool exploded = advance(model, s, team);
+    const Advanced advanced = advance(model, s, team);
     s.time += h;
     ++s.steps;
-    if (exploded) {
+    if (advanced.exploded) {
         reset_to_rest(model, s);
         ++s.resets;
     }
+    else
+        track_stillness(model, s, advanced.max_speed2);
 }
 
 }  // namespace echosim::physics

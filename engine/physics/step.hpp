@@ -4,6 +4,8 @@
 //   3. implicit: solve (M + h D + h^2 K) dv = h (f - h K v) by PCG (cg.cpp), then v += dv,
 //      x += h v; explicit: v += h M^-1 f, x += h v
 //   4. guard: a NaN or a node faster than options.max_speed resets the state to rest and is counted
+// unless the tissue sleeps: still for options.sleep_after under the same probe and load, when the
+// step only advances the clock (physics_options.hpp, sleep_speed).
 // The model is read only (compiled_model.hpp); the state is written (tissue_state.hpp); the team is
 // execution, the caller's: whoever steps owns it (PhysicsRunner, or a Simulation, simulation.hpp).
 #pragma once

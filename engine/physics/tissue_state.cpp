@@ -10,7 +10,7 @@ TissueState make_state(const CompiledModel& model)
     const std::size_t n = model.node_count();
     const Eigen::Index dof = Eigen::Index(3 * n);
     const int parts = model.options.threads;
-    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.external, &s.force, &s.stiffness_v}) *v = Eigen::VectorXd::Zero(dof);
+    for (Eigen::VectorXd* v : {&s.x, &s.v, &s.external, &s.still_external, &s.force, &s.stiffness_v}) *v = Eigen::VectorXd::Zero(dof);
     s.spring_linearisation = make_spring_planes(model.grid, 4);
     s.node_scratch.assign(n, 0.0);
     s.x_planes.assign(3 * n, 0.0);
@@ -33,6 +33,7 @@ void reset_to_rest(const CompiledModel& model, TissueState& s)
     s.v.setZero();
     std::fill(s.cg.dv.begin(), s.cg.dv.end(), 0.0f);
     s.constant_jacobian_ready = false;
+    s.still_for = 0;
 }
 
 }  // namespace echosim::physics

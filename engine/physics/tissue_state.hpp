@@ -23,6 +23,7 @@
 namespace echosim::physics {
 
 struct StepStats {
+    bool asleep = false;  // the step only advanced the clock (PhysicsOptions::sleep_speed)
     int cg_iterations = 0;
     double cg_residual = 0;
     double probe_force_N = 0;  // the tissue's push on the probe, along the probe axis
@@ -52,6 +53,12 @@ struct TissueState {
     // of the last linearisation (the column's constants are the model's: CompiledModel::columns)
     std::vector<double> normal_stiffness;
     bool constant_jacobian_ready = false;
+
+    // Sleeping (PhysicsOptions::sleep_speed): the probe and external load the tissue has been still
+    // under, and for how long [s] (reset whenever a node moves faster or either changes).
+    contact::ProbeState still_probe;
+    Eigen::VectorXd still_external;
+    double still_for = 0;
 
     StepStats last;
     int resets = 0;   // NaNs and explosions detected and recovered from
