@@ -21,5 +21,5 @@ void main()
     }
     vec3 n = normalize(in_normal);
     if (!gl_FrontFacing) n = -n;
-    out_color = vec4(shade(frame, n, in_world, in_color, draw.tint.a), 1.0);
+    out_color = vec4(for_target(shade(frame, n, in_world, in_color, draw.tint.a)), 1.0);
 }

@@ -13,7 +13,7 @@ layout(location = 2) in vec3 in_color;
 
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
-layout(location = 2) out vec3 out_color;  // the albedo, or the lit colour unless LIT_PER_PIXEL
+layout(location = 2) out vec3 out_color;  // the albedo, or the lit colour as the target takes it unless LIT_PER_PIXEL
 
 void main()
 {
@@ -24,6 +24,6 @@ void main()
     out_world = world.xyz;
     out_normal = normal;
     // the pipeline culls back faces, so the outward normal is the one lit
-    out_color = LIT_PER_PIXEL ? albedo : shade(frame, normalize(normal), world.xyz, albedo, draw.tint.a);
+    out_color = LIT_PER_PIXEL ? albedo : for_target(shade(frame, normalize(normal), world.xyz, albedo, draw.tint.a));
     gl_Position = frame.view_proj * world;
 }

@@ -7,13 +7,24 @@
 #ifndef ECHOSIM_MESH_LIGHTING_GLSL
 #define ECHOSIM_MESH_LIGHTING_GLSL
 
+#include "srgb.glsl"
+
 // Whether the fragment shader lights (else the vertex shader does): specialization constant 0 of
 // both stages, set per pipeline by the scene pass.
 layout(constant_id = 0) const bool LIT_PER_PIXEL = true;
+// Whether the target's format is sRGB, so it encodes the linear colours written (constant 1, from
+// the target's format). Where it is not (echosim's own targets: gpu/window.cpp), the shader encodes:
+// per vertex for the vertex-lit meshes, a colour interpolated between display values that differs
+// from the linear interpolation by less than a level over their millimetre triangles, at a fraction
+// of the cost of an encode per pixel on a CPU rasteriser.
+layout(constant_id = 1) const bool TARGET_ENCODES = true;
+
+// A linear colour as the target must be written.
+vec3 for_target(vec3 linear) { return TARGET_ENCODES ? linear : linear_to_srgb(linear); }
 
 // Skin-like shading: wrapped diffuse (light bleeding past the terminator, as in skin), hemisphere
 // ambient, a soft specular lobe whose strength follows the draw's glossiness, and a faint rim.
-// `n` is the unit normal at `world` [mm]; the result is linear (the sRGB attachment encodes it).
+// `n` is the unit normal at `world` [mm]; the result is linear (for_target writes it).
 vec3 shade(FrameUniforms frame, vec3 n, vec3 world, vec3 albedo, float gloss)
 {
     vec3 v = normalize(frame.eye.xyz - world);

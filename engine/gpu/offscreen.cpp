@@ -19,12 +19,20 @@ VkExtent2D checked_extent(const Context& ctx, VkExtent2D extent)
     return extent;
 }
 
+// the read-back copies four bytes a pixel in RGBA order
+VkFormat checked_format(VkFormat format)
+{
+    if (format != VK_FORMAT_R8G8B8A8_UNORM && format != VK_FORMAT_R8G8B8A8_SRGB)
+        throw std::invalid_argument("offscreen target format " + std::to_string(int(format)) + ": R8G8B8A8_UNORM or R8G8B8A8_SRGB");
+    return format;
+}
+
 }  // namespace
 
-OffscreenPresenter::OffscreenPresenter(CommandPool& commands, VkExtent2D extent)
+OffscreenPresenter::OffscreenPresenter(CommandPool& commands, VkExtent2D extent, VkFormat format)
     : ctx_(commands.context()),
       commands_(commands),
-      color_(ctx_, checked_extent(ctx_, extent), kFormat, kUsage, VK_IMAGE_ASPECT_COLOR_BIT),
+      color_(ctx_, checked_extent(ctx_, extent), checked_format(format), kUsage, VK_IMAGE_ASPECT_COLOR_BIT),
       readback_(ctx_, VkDeviceSize(extent.width) * extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::host_visible)
 {
 }
@@ -44,7 +52,7 @@ void OffscreenPresenter::render(const FramePasses& passes, io::RgbaImage* out)
 
 void OffscreenPresenter::record(VkCommandBuffer cmd, const FramePasses& passes, bool readback)
 {
-    const FrameTarget target{color_.handle(), color_.view(), color_.extent(), kFormat, kUsage};
+    const FrameTarget target{color_.handle(), color_.view(), color_.extent(), color_.format(), kUsage};
     // the last frame's readback is over (its fence was waited for): the image starts as new, and
     // ends as the source of this frame's copy
     const TargetState initial{VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE};

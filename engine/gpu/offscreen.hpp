@@ -21,18 +21,20 @@ namespace echosim::gpu {
 
 class OffscreenPresenter {
 public:
-    static constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_SRGB;  // bytes read back are sRGB, ready for PNG
+    // The window's kind of target (gpu/window.cpp): the passes write sRGB-encoded bytes, ready for
+    // PNG. R8G8B8A8_SRGB, the window's fallback, gives the same bytes, the target encoding them.
+    static constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_UNORM;
     static constexpr VkImageUsageFlags kUsage =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
     // `commands`: the calling thread's pool (on its context); it must outlive the presenter.
-    OffscreenPresenter(CommandPool& commands, VkExtent2D extent);
+    OffscreenPresenter(CommandPool& commands, VkExtent2D extent, VkFormat format = kFormat);
     ~OffscreenPresenter();
     OffscreenPresenter(const OffscreenPresenter&) = delete;
     OffscreenPresenter& operator=(const OffscreenPresenter&) = delete;
 
     VkExtent2D extent() const { return color_.extent(); }
-    VkFormat format() const { return kFormat; }
+    VkFormat format() const { return color_.format(); }
 
     // Records the passes into one frame, submits it and waits for it; with `out` the pixels are
     // copied back into it.

@@ -239,6 +239,11 @@ void TexelView::reset()
     view_ = VK_NULL_HANDLE;
 }
 
+bool is_srgb(VkFormat f)
+{
+    return f == VK_FORMAT_R8_SRGB || f == VK_FORMAT_R8G8_SRGB || f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB;
+}
+
 std::uint32_t texel_bytes(VkFormat format)
 {
     switch (format) {

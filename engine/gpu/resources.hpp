@@ -129,6 +129,8 @@ private:
 
 // Bytes per texel of the colour formats echosim uploads; throws for any other format.
 std::uint32_t texel_bytes(VkFormat format);
+// Whether the format is one of the 8-bit sRGB colour formats (sampling decodes, writing encodes).
+bool is_srgb(VkFormat format);
 
 // A device-local buffer filled with `bytes` through a staging buffer; waits for the copy.
 Buffer upload_buffer(CommandPool& pool, std::span<const std::byte> bytes, VkBufferUsageFlags usage);

@@ -105,17 +105,25 @@ WindowPresenter::WindowPresenter(CommandPool& commands, Window& window)
         vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.queue_family(), surface_, &supported);
         if (!supported) throw std::runtime_error("the Vulkan queue of " + ctx.device_name() + " cannot present to this window");
 
-        // prefer an sRGB swapchain so the shaders write linear colour, as offscreen
+        // Prefer an 8-bit UNORM swapchain holding sRGB-encoded bytes, as offscreen: the passes encode
+        // (per vertex where they can) and the image panel passes its display bytes through, where an
+        // sRGB format would encode every pixel written (on lavapipe, about 7 % of the window's
+        // frame). Else an sRGB format, which the passes write linear colour to (they ask the target's
+        // format: render/scene_pass.cpp, render/image_panel_pass.cpp).
         std::uint32_t n = 0;
         vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physical_device(), surface_, &n, nullptr);
         std::vector<VkSurfaceFormatKHR> formats(n);
         vkGetPhysicalDeviceSurfaceFormatsKHR(ctx.physical_device(), surface_, &n, formats.data());
         if (formats.empty()) throw std::runtime_error("the window surface offers no formats");
-        format_ = formats[0].format;
-        for (const auto& f : formats)
-            if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
-                f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
-                format_ = f.format;
+        const auto offered = [&](std::initializer_list<VkFormat> wanted) {
+            for (VkFormat w : wanted)
+                for (const auto& f : formats)
+                    if (f.format == w && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR) return w;
+            return VK_FORMAT_UNDEFINED;
+        };
+        format_ = offered({VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM});
+        if (format_ == VK_FORMAT_UNDEFINED) format_ = offered({VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB});
+        if (format_ == VK_FORMAT_UNDEFINED) format_ = formats[0].format;
 
         const VkDevice dev = ctx.device();
         for (Frame& f : frames_) {

@@ -113,13 +113,9 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
-    // the displayed bytes are sRGB-encoded grey: as R8_SRGB the panel's sampler decodes them (a
-    // table), where as R8_UNORM its shader must (render/image_panel_pass.hpp); the bytes are the same
-    VkFormatProperties srgb{};
-    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), VK_FORMAT_R8_SRGB, &srgb);
-    constexpr VkFormatFeatureFlags needed =
-        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
-    const VkFormat display_format = (srgb.optimalTilingFeatures & needed) == needed ? VK_FORMAT_R8_SRGB : VK_FORMAT_R8_UNORM;
+    // the displayed bytes are sRGB-encoded grey, as R8_UNORM: the image panel passes them through
+    // to echosim's targets, which hold sRGB-encoded bytes too (shaders/panel.frag)
+    constexpr VkFormat display_format = VK_FORMAT_R8_UNORM;
     const VkDeviceSize pixels = plane_.pixels();
     const VkDeviceSize display_bytes = VkDeviceSize(kernels::slice_words(plane_.columns)) * 4 * plane_.rows;
     constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;

@@ -9,8 +9,8 @@
 //     record() for the frame's slot, then the panel shows image(slot));
 //   - offscreen (render()): one frame, waited for and read back, for `echosim slice`, the tests
 //     and the benchmark.
-// The displayed image is one grey byte a pixel (R8_SRGB where the device samples it, else R8_UNORM;
-// its view swizzled to grey: {R, R, R, 1}),
+// The displayed image is one grey byte a pixel, sRGB-encoded (R8_UNORM, its view swizzled to grey:
+// {R, R, R, 1}),
 // which the slice kernel writes packed four to a word into a buffer and a copy puts into the image.
 //
 // Live read-back (`echosim run --igtl`, the link to 3D Slicer), only when asked for

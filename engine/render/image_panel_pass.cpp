@@ -1,5 +1,6 @@
 #include "render/image_panel_pass.hpp"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -15,12 +16,13 @@ constexpr gpu::BindingKind kBindings[] = {gpu::BindingKind::sampled_image};  // 
 static_assert(PANEL_IMAGE_SET == 0 && PANEL_IMAGE_BINDING == 0, "the panel's one binding is binding 0 of set 0");
 
 // The panel's pipeline: no vertex buffers (the vertex shader makes the quad's corners from their
-// index), opaque (the panel replaces the scene under it); `sampler_decodes`: for sRGB images.
+// index), opaque (the panel replaces the scene under it); `sampler_decodes`: for sRGB images. The
+// target's format says whether it encodes what the shader writes (shaders/panel.frag).
 VkPipeline make_panel(const gpu::Context& ctx, VkPipelineLayout layout, VkFormat color_format, bool sampler_decodes)
 {
-    const VkBool32 decodes = sampler_decodes ? VK_TRUE : VK_FALSE;
-    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
-    const VkSpecializationInfo specialization{1, &entry, sizeof(decodes), &decodes};
+    const std::array<VkBool32, 2> constants{sampler_decodes ? VK_TRUE : VK_FALSE, gpu::is_srgb(color_format) ? VK_TRUE : VK_FALSE};
+    const std::array<VkSpecializationMapEntry, 2> entries{{{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}}};
+    const VkSpecializationInfo specialization{std::uint32_t(entries.size()), entries.data(), sizeof(constants), constants.data()};
     GraphicsPipelineDesc desc;
     desc.name = "panel";
     desc.vertex_spirv = shaders::panel_vert;
@@ -29,11 +31,6 @@ VkPipeline make_panel(const gpu::Context& ctx, VkPipelineLayout layout, VkFormat
     desc.color_format = color_format;
     desc.specialization = &specialization;
     return create_graphics_pipeline(ctx.device(), layout, desc);
-}
-
-bool is_srgb(VkFormat f)
-{
-    return f == VK_FORMAT_R8_SRGB || f == VK_FORMAT_R8G8_SRGB || f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB;
 }
 
 }  // namespace
@@ -86,7 +83,7 @@ void ImagePanelPass::record(const gpu::PassContext& frame)
     const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(frame.cmd, 0, 1, &vp);
     vkCmdSetScissor(frame.cmd, 0, 1, &area);
-    const gpu::Pipeline& pipeline = is_srgb(image_->format()) ? srgb_pipeline_ : pipeline_;
+    const gpu::Pipeline& pipeline = gpu::is_srgb(image_->format()) ? srgb_pipeline_ : pipeline_;
     vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
     const VkDescriptorSet set = descriptors_.set(frame.slot);
     vkCmdBindDescriptorSets(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), PANEL_IMAGE_SET, 1, &set, 0, nullptr);

@@ -1,6 +1,8 @@
 #include "render/scene_pass.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +22,13 @@ using gpu::transition;
 using gpu::upload_buffer;
 
 namespace {
+
+// sRGB's encoding of a linear value in 0..1 (shaders/srgb.glsl's linear_to_srgb)
+float srgb_encode(float c)
+{
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
 
 using mesh_bindings::DrawPush;
 using mesh_bindings::FrameUniforms;
@@ -75,9 +84,10 @@ ScenePass::~ScenePass() { ctx_.wait_idle(); }
 VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
                                            bool lit_per_pixel)
 {
-    const VkBool32 per_pixel = lit_per_pixel ? VK_TRUE : VK_FALSE;
-    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};  // LIT_PER_PIXEL, shaders/mesh_lighting.glsl
-    const VkSpecializationInfo specialization{1, &entry, sizeof(per_pixel), &per_pixel};
+    // LIT_PER_PIXEL and TARGET_ENCODES, shaders/mesh_lighting.glsl
+    const std::array<VkBool32, 2> constants{lit_per_pixel ? VK_TRUE : VK_FALSE, gpu::is_srgb(color_format) ? VK_TRUE : VK_FALSE};
+    const std::array<VkSpecializationMapEntry, 2> entries{{{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}}};
+    const VkSpecializationInfo specialization{std::uint32_t(entries.size()), entries.data(), sizeof(constants), constants.data()};
     const VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
     const VkVertexInputAttributeDescription attributes[3] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, position)},
@@ -161,7 +171,10 @@ void ScenePass::record(const gpu::PassContext& pass)
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     color.loadOp = target_use().attachment_load_op();
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color.clearValue.color = {{0.012f, 0.014f, 0.018f, 1.0f}};
+    // the background, linear; a target that does not encode takes it encoded, as the shaders write
+    const glm::vec3 background(0.012f, 0.014f, 0.018f);
+    const glm::vec3 clear = gpu::is_srgb(color_format_) ? background : glm::vec3(srgb_encode(background.r), srgb_encode(background.g), srgb_encode(background.b));
+    color.clearValue.color = {{clear.r, clear.g, clear.b, 1.0f}};
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = slot.depth.view();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;

@@ -4,12 +4,14 @@
 // count is read after every GPU object and the device are gone.
 #include "render/image_panel_pass.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <memory>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -107,12 +109,13 @@ struct RandomImage {
 struct PanelGpu {
     gpu::Context ctx{test::lavapipe_options()};
     gpu::CommandPool commands{ctx};
-    gpu::OffscreenPresenter presenter{commands, kTarget};
+    gpu::OffscreenPresenter presenter;
     const gpu::Sampler nearest{ctx, gpu::Filter::nearest};
     ScenePass scene_pass;
     ImagePanelPass panel{ctx, presenter.format(), kRect};
 
-    explicit PanelGpu(app::DefaultScene& scene) : scene_pass(ctx, commands, presenter.format(), scene.meshes())
+    explicit PanelGpu(app::DefaultScene& scene, VkFormat target = gpu::OffscreenPresenter::kFormat)
+        : presenter(commands, kTarget, target), scene_pass(ctx, commands, presenter.format(), scene.meshes())
     {
         scene_pass.set_view(scene.frame_view());
     }
@@ -146,27 +149,61 @@ TEST(ImagePanel, ShowsAnUploadedImageOverTheScene)
     }
 }
 
-// The same bytes in an sRGB format, which the sampler decodes instead of the panel's shader (the
-// echographic image is R8_SRGB): the target shows the same bytes.
-TEST(ImagePanel, ShowsAnSrgbImageAsItsBytes)
+// The same bytes in an sRGB format, which the sampler decodes, and a target in an sRGB format, which
+// encodes what is written (the window's fallback where its surface offers no UNORM format), in each
+// pairing: the target shows the image's bytes.
+TEST(ImagePanel, ShowsTheImagesBytesWhicheverSideIsSrgb)
 {
     const RandomImage texel(11);
+    for (const VkFormat target : {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_SRGB})
+        for (const VkFormat image_format : {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_SRGB}) {
+            app::DefaultScene scene;
+            std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+            io::RgbaImage scene_only, frame;
+            {
+                PanelGpu rig(scene, target);
+                messages = rig.ctx.validation_counter();
+                const gpu::Image image = texel.upload(rig.commands, image_format);
+                rig.panel.show(image, rig.nearest);
+                rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
+                rig.presenter.render(gpu::FramePasses{&rig.scene_pass, &rig.panel}, &frame);
+            }
+            EXPECT_EQ(messages->load(), 0u);
+            const PixelCheck c = check(frame, scene_only, texel);
+            const std::string pairing = "image " + std::to_string(int(image_format)) + " on target " + std::to_string(int(target));
+            EXPECT_EQ(c.outside_changed, 0) << pairing;
+            EXPECT_EQ(c.inside_wrong, 0) << "pixels of the panel unlike the image's bytes: " << pairing;
+        }
+}
 
+// The scene encoded by its shaders (per vertex for the matte meshes, interpolated between display
+// values) against the scene an sRGB target encodes per pixel: the same picture, to a level.
+TEST(ImagePanel, TheSceneShaderEncodedMatchesTheSrgbTargets)
+{
     app::DefaultScene scene;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
-    io::RgbaImage scene_only, frame;
+    io::RgbaImage encoded, by_target;
     {
-        PanelGpu rig(scene);
-        messages = rig.ctx.validation_counter();
-        const gpu::Image image = texel.upload(rig.commands, VK_FORMAT_R8G8B8A8_SRGB);
-        rig.panel.show(image, rig.nearest);
-        rig.presenter.render(gpu::FramePasses{&rig.scene_pass}, &scene_only);
-        rig.presenter.render(gpu::FramePasses{&rig.scene_pass, &rig.panel}, &frame);
+        PanelGpu unorm(scene, VK_FORMAT_R8G8B8A8_UNORM);
+        messages = unorm.ctx.validation_counter();
+        unorm.presenter.render(gpu::FramePasses{&unorm.scene_pass}, &encoded);
     }
     EXPECT_EQ(messages->load(), 0u);
-    const PixelCheck c = check(frame, scene_only, texel);
-    EXPECT_EQ(c.outside_changed, 0);
-    EXPECT_EQ(c.inside_wrong, 0) << "pixels of the panel unlike the sRGB image's bytes";
+    {
+        PanelGpu srgb(scene, VK_FORMAT_R8G8B8A8_SRGB);
+        messages = srgb.ctx.validation_counter();
+        srgb.presenter.render(gpu::FramePasses{&srgb.scene_pass}, &by_target);
+    }
+    EXPECT_EQ(messages->load(), 0u);
+    ASSERT_EQ(encoded.pixels.size(), by_target.pixels.size());
+    int worst = 0, off_by_more_than_one = 0;
+    for (std::size_t i = 0; i < encoded.pixels.size(); ++i) {
+        const int d = std::abs(int(encoded.pixels[i]) - int(by_target.pixels[i]));
+        worst = std::max(worst, d);
+        off_by_more_than_one += d > 1;
+    }
+    EXPECT_LE(worst, 2);
+    EXPECT_LT(off_by_more_than_one, int(encoded.pixels.size()) / 1000) << "worst " << worst;
 }
 
 TEST(ImagePanel, EachFrameShowsTheImageShownBeforeIt)
