@@ -87,7 +87,8 @@ bool probe_still(const CompiledModel& model, const contact::ProbeState& now, con
 bool sleeps(const CompiledModel& model, const TissueState& s)
 {
     const PhysicsOptions& o = model.options;
-    return o.sleep_after > 0 && s.still_for >= o.sleep_after && probe_still(model, s.probe, s.still_probe) && s.external == s.still_external;
+    return o.sleep_after > 0 && s.still_for >= o.sleep_after && probe_still(model, s.probe, s.still_probe) &&
+           s.external == s.still_external;
 }
 
 // After a step: how long the tissue has been still, under the probe and the load it was still under.

@@ -173,7 +173,9 @@ void ScenePass::record(const gpu::PassContext& pass)
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     // the background, linear; a target that does not encode takes it encoded, as the shaders write
     const glm::vec3 background(0.012f, 0.014f, 0.018f);
-    const glm::vec3 clear = gpu::is_srgb(color_format_) ? background : glm::vec3(srgb_encode(background.r), srgb_encode(background.g), srgb_encode(background.b));
+    const glm::vec3 clear = gpu::is_srgb(color_format_)
+                                ? background
+                                : glm::vec3(srgb_encode(background.r), srgb_encode(background.g), srgb_encode(background.b));
     color.clearValue.color = {{clear.r, clear.g, clear.b, 1.0f}};
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = slot.depth.view();
