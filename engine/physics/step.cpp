@@ -95,13 +95,14 @@ bool sleeps(const CompiledModel& model, const TissueState& s)
 void track_stillness(const CompiledModel& model, TissueState& s, double max_speed2)
 {
     const double v = model.options.sleep_speed;
-    if (max_speed2 <= v * v && probe_still(model, s.probe, s.still_probe) && s.external == s.still_external) {
+    const bool same_load = s.external == s.still_external;
+    if (max_speed2 <= v * v && same_load && probe_still(model, s.probe, s.still_probe)) {
         s.still_for += model.options.time_step;
         return;
     }
     s.still_for = 0;
     s.still_probe = s.probe;
-    s.still_external = s.external;  // (the size is the state's: no allocation)
+    if (!same_load) s.still_external = s.external;  // (the size is the state's: no allocation; not every moving step)
 }
 
 // The wiring a step relies on: a team of the model's size and a state made for the model.

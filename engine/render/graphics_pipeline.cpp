@@ -1,5 +1,7 @@
 #include "render/graphics_pipeline.hpp"
 
+#include <array>
+#include <stdexcept>
 #include <string>
 
 #include "gpu/shader.hpp"
@@ -18,11 +20,18 @@ VkPipeline create_graphics_pipeline(VkDevice dev, VkPipelineLayout layout, const
         vkDestroyShaderModule(dev, vert, nullptr);
         throw;
     }
+    constexpr std::size_t kMaxConstants = 4;
+    if (desc.constants.size() > kMaxConstants)
+        throw std::invalid_argument(std::string(desc.name) + ": more than " + std::to_string(kMaxConstants) + " specialization constants");
+    std::array<VkSpecializationMapEntry, kMaxConstants> entries{};
+    for (std::uint32_t k = 0; k < desc.constants.size(); ++k) entries[k] = {k, k * std::uint32_t(sizeof(VkBool32)), sizeof(VkBool32)};
+    const VkSpecializationInfo specialization{std::uint32_t(desc.constants.size()), entries.data(), desc.constants.size_bytes(),
+                                              desc.constants.data()};
     VkPipelineShaderStageCreateInfo stages[2]{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main",
-                 desc.specialization};
+                 &specialization};
     stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main",
-                 desc.specialization};
+                 &specialization};
 
     VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     vertex_input.vertexBindingDescriptionCount = std::uint32_t(desc.vertex_bindings.size());

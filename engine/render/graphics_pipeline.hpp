@@ -20,9 +20,9 @@ struct GraphicsPipelineDesc {
     VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     VkFormat color_format = VK_FORMAT_UNDEFINED;
     VkFormat depth_format = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment, no depth test
-    // both shaders' specialization constants, if they have any (a constant a stage does not declare
-    // is ignored there)
-    const VkSpecializationInfo* specialization = nullptr;
+    // both shaders' boolean specialization constants, constant_id 0, 1, ... in order (a constant a
+    // stage does not declare is ignored there)
+    std::span<const VkBool32> constants;
 };
 
 // Throws std::runtime_error naming the pipeline when a shader module or the pipeline cannot be made.

@@ -20,16 +20,15 @@ static_assert(PANEL_IMAGE_SET == 0 && PANEL_IMAGE_BINDING == 0, "the panel's one
 // target's format says whether it encodes what the shader writes (shaders/panel.frag).
 VkPipeline make_panel(const gpu::Context& ctx, VkPipelineLayout layout, VkFormat color_format, bool sampler_decodes)
 {
+    // SAMPLER_DECODES and TARGET_ENCODES, shaders/panel.frag
     const std::array<VkBool32, 2> constants{sampler_decodes ? VK_TRUE : VK_FALSE, gpu::is_srgb(color_format) ? VK_TRUE : VK_FALSE};
-    const std::array<VkSpecializationMapEntry, 2> entries{{{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}}};
-    const VkSpecializationInfo specialization{std::uint32_t(entries.size()), entries.data(), sizeof(constants), constants.data()};
     GraphicsPipelineDesc desc;
     desc.name = "panel";
     desc.vertex_spirv = shaders::panel_vert;
     desc.fragment_spirv = shaders::panel_frag;
     desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
     desc.color_format = color_format;
-    desc.specialization = &specialization;
+    desc.constants = constants;
     return create_graphics_pipeline(ctx.device(), layout, desc);
 }
 

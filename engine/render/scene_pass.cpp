@@ -86,8 +86,6 @@ VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout
 {
     // LIT_PER_PIXEL and TARGET_ENCODES, shaders/mesh_lighting.glsl
     const std::array<VkBool32, 2> constants{lit_per_pixel ? VK_TRUE : VK_FALSE, gpu::is_srgb(color_format) ? VK_TRUE : VK_FALSE};
-    const std::array<VkSpecializationMapEntry, 2> entries{{{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}}};
-    const VkSpecializationInfo specialization{std::uint32_t(entries.size()), entries.data(), sizeof(constants), constants.data()};
     const VkVertexInputBindingDescription vertex_binding{0, sizeof(scene::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
     const VkVertexInputAttributeDescription attributes[3] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(scene::Vertex, position)},
@@ -106,7 +104,7 @@ VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout
     desc.front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     desc.color_format = color_format;
     desc.depth_format = depth_format;
-    desc.specialization = &specialization;
+    desc.constants = constants;
     return create_graphics_pipeline(dev, layout, desc);
 }
 
