@@ -19,6 +19,7 @@ using glm::vec3;
 using glm::vec4;
 using glm::mat4;
 using glm::uvec2;
+using glm::uvec3;
 using glm::packHalf2x16;
 using glm::unpackHalf2x16;
 using glm::clamp;

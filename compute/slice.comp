@@ -6,7 +6,8 @@
 // The slice stage, with the post stage on each sample (slice_bindings.h): one invocation per
 // SLICE_RUN pixels of a row. The grey volume is sampled trilinearly: through a linear sampler (the
 // hardware's filter) at normalised coordinates (index + 0.5) / size, or from packed neighbours
-// (SLICE_PACKED); the labels share the volume's grid and are fetched at the nearest voxel.
+// (SLICE_PACKED, their image tiled: slice_bindings.h); the labels share the volume's grid and are
+// fetched at the nearest voxel.
 layout(local_size_x = SLICE_GROUP_X, local_size_y = SLICE_GROUP_Y) in;
 // The SliceParams flags this pipeline was made for (its dispatcher sets them from the frame's
 // params): a constant, so the outputs and inputs switched off are compiled out, not masked.
@@ -27,7 +28,8 @@ void main()
     uint c0 = word * uint(SLICE_RUN);
     if (c0 >= s.columns || r >= s.rows) return;
     const bool warped = (FLAGS & SLICE_WARPED) != 0u, post = (FLAGS & SLICE_POST) != 0u;
-    vec3 size = vec3(textureSize(volume, 0));
+    uvec3 voxels = uvec3(s.volume_x, s.volume_y, s.volume_z);
+    vec3 size = vec3(voxels);
     ivec3 label_size = textureSize(labels, 0);
     vec4 row_texel = texelFetch(post_rows, int(r));
     PostRow row = PostRow(row_texel.x, row_texel.y, row_texel.z, row_texel.w);
@@ -62,9 +64,11 @@ void main()
         float grey = 0.0;
         if ((FLAGS & SLICE_PACKED) != 0u) {
             vec3 lo = clamp(floor(index), vec3(0.0), max(size - 2.0, vec3(0.0)));
-            ivec3 at = ivec3(lo);
-            ivec3 far_x = at + ivec3(min(1, int(size.x) - 1), 0, 0);  // a volume one voxel wide has no far column
-            float sample_ = packed_trilinear(texelFetch(volume, at, 0), texelFetch(volume, far_x, 0), index - lo);
+            uvec3 at = uvec3(lo);
+            uvec3 far_x = at + uvec3(min(1u, voxels.x - 1u), 0u, 0u);  // a volume one voxel wide has no far column
+            uint rows = packed_rows(voxels.y);
+            float sample_ = packed_trilinear(texelFetch(volume, ivec3(packed_texel(at, rows)), 0),
+                                             texelFetch(volume, ivec3(packed_texel(far_x, rows)), 0), index - lo);
             grey = inside_volume(index, size) ? sample_ * 255.0 : 0.0;
         } else {
             grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;

@@ -44,6 +44,10 @@ struct SliceParams {
     uint flags;  // SLICE_WARPED | SLICE_LABELS | SLICE_GREY | SLICE_POST | SLICE_PACKED: the kernel's variant
     uint map_columns;  // the deform map's columns across the same width (deform_bindings.h), at most `columns`
     float map_step;    // map_columns / columns: the map's columns per image column, at most 1
+    uint volume_x;     // the volume's voxels along each axis (a packed volume's image is another shape)
+    uint volume_y;
+    uint volume_z;
+    uint unused;       // (std140: the struct a multiple of 16 bytes)
 };
 
 // A frame's parameters of the fused slice and post stages (a uniform buffer: more than push
@@ -58,8 +62,28 @@ struct SliceFrame {
 // at x and x + 1 and the lerps. Made on CPU devices (image::EchoVolumeGpu says when): llvmpipe's
 // trilinear filter gathers eight texels per sample and costs several times two plain fetches; a
 // GPU's sampler does it in hardware, from a quarter of the memory. The two texels are neighbours in
-// memory (llvmpipe lays images out linearly, x fastest), so a sample reads one cache line, not two
-// from slices a whole image apart, and a plane through the volume touches half the lines and pages.
+// memory 3 times in 4 (packed_texel below), so a sample mostly reads one cache line.
+//
+// Where the texels lie (packed_texel): each row of the image holds four rows of the volume's y in
+// tiles of 4 x 4 (x, y), x fastest. llvmpipe lays an image out linearly (x fastest), so a 64-byte
+// cache line is one tile, where a plain layout gave a line 16 texels of one row: a plane through
+// the volume that is not its (x, y) plane crossed into a new line every few texels (an oblique
+// 0.1 mm slice ran at 60 % of a nearly aligned one). An image row holds at most SLICE_TILES_A_ROW
+// tiles; a wider volume's further tiles fold into further rows below (an image can be 2048 texels
+// wide where a device allows no more).
+#define SLICE_TILES_A_ROW 128u  // 4 x 4 tiles a row of a packed volume's image at most (2048 texels)
+
+// The image rows one fold of a packed volume takes: one for each four of y.
+KERNEL_FN uint packed_rows(uint voxels_y) { return (voxels_y + 3u) >> 2u; }
+
+// Where texel `at` of a packed volume lies in its image, `rows` being packed_rows of its y size.
+KERNEL_FN uvec3 packed_texel(uvec3 at, uint rows)
+{
+    uint tile = at.x >> 2u;
+    return uvec3(((tile % SLICE_TILES_A_ROW) << 4u) | (at.x & 3u) | ((at.y & 3u) << 2u), (at.y >> 2u) + rows * (tile / SLICE_TILES_A_ROW),
+                 at.z);
+}
+
 KERNEL_FN float packed_trilinear(vec4 near_x, vec4 far_x, vec3 f)
 {
     vec4 at_x = mix(near_x, far_x, f.x);  // the (y, z) square's corners at x + f.x

@@ -127,7 +127,19 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                 float(kLinearProbe.frequency_mhz),
                 labelled ? 0u : DEFORM_PAPER_LINEAR,
                 DEFORM_SOLVE};
-    k.slice = {probe_to_index, plane.columns, plane.rows, px, py, float(plane.width_mm), warped ? SLICE_WARPED : 0u, map_columns, map_step};
+    k.slice = {probe_to_index,
+               plane.columns,
+               plane.rows,
+               px,
+               py,
+               float(plane.width_mm),
+               warped ? SLICE_WARPED : 0u,
+               map_columns,
+               map_step,
+               std::uint32_t(grid.size[0]),
+               std::uint32_t(grid.size[1]),
+               std::uint32_t(grid.size[2]),
+               0u};
     k.post.columns = plane.columns;
     k.post.rows = plane.rows;
     k.post.pixel_x_mm = px;

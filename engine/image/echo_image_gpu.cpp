@@ -22,17 +22,35 @@ gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat fo
     return image;
 }
 
-// The largest packed volume made [bytes]: four times the voxels, in a CPU device's memory (the
-// host's); beyond it the R8 volume and the trilinear sampler serve.
+// The largest packed volume made [bytes]: four times the voxels and a little padding, in a CPU
+// device's memory (the host's); beyond it the R8 volume and the trilinear sampler serve.
 constexpr std::uint64_t kMaxPackedBytes = std::uint64_t(2) << 30;
 
-// The volume as slice_bindings.h's packed texels: at each x, the grey levels of (y, z), (y + 1, z),
-// (y, z + 1), (y + 1, z + 1), the far neighbours clamped to the edge.
+// A packed volume's image (slice_bindings.h): its tiles a row, folded below where there are more.
+VkExtent3D packed_extent(const io::Volume& v)
+{
+    const std::uint64_t tiles = (v.size[0] + 3) / 4, folds = (tiles + SLICE_TILES_A_ROW - 1) / SLICE_TILES_A_ROW;
+    const std::uint64_t rows = kernels::packed_rows(std::uint32_t(v.size[1])) * folds;
+    return {std::uint32_t(std::min<std::uint64_t>(tiles, SLICE_TILES_A_ROW) * 16), std::uint32_t(rows), std::uint32_t(v.size[2])};
+}
+
+// The volume as slice_bindings.h's packed texels, each where packed_texel puts it: at each x, the
+// grey levels of (y, z), (y + 1, z), (y, z + 1), (y + 1, z + 1), the far neighbours clamped to the
+// edge. packed_texel's terms of x and of y lie in separate bits or add, so a texel's place is the
+// sum of its x's and its (y, z)'s, each worked out once.
 std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
 {
     const std::size_t nx = v.size[0], ny = v.size[1], nz = v.size[2];
     const auto* g = v.as<std::uint8_t>();
-    std::vector<std::uint32_t> out(nx * ny * nz);
+    const VkExtent3D extent = packed_extent(v);
+    const std::uint32_t rows = kernels::packed_rows(std::uint32_t(ny));
+    const auto place = [&](std::size_t x, std::size_t y, std::size_t z) {
+        const kernels::uvec3 t = kernels::packed_texel({std::uint32_t(x), std::uint32_t(y), std::uint32_t(z)}, rows);
+        return (std::size_t(t.z) * extent.height + t.y) * extent.width + t.x;
+    };
+    std::vector<std::uint32_t> out(std::size_t(extent.width) * extent.height * extent.depth, 0u);
+    std::vector<std::size_t> along_x(nx);
+    for (std::size_t x = 0; x < nx; ++x) along_x[x] = place(x, 0, 0);
     for (std::size_t z = 0; z < nz; ++z)
         for (std::size_t y = 0; y < ny; ++y) {
             const std::size_t y1 = std::min(y + 1, ny - 1), z1 = std::min(z + 1, nz - 1);
@@ -40,9 +58,10 @@ std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
             const std::uint8_t* below = g + v.index(0, y1, z);
             const std::uint8_t* behind = g + v.index(0, y, z1);
             const std::uint8_t* both = g + v.index(0, y1, z1);
-            std::uint32_t* dst = out.data() + (z * ny + y) * nx;
+            std::uint32_t* dst = out.data() + place(0, y, z);
             for (std::size_t x = 0; x < nx; ++x)
-                dst[x] = std::uint32_t(here[x]) | std::uint32_t(below[x]) << 8 | std::uint32_t(behind[x]) << 16 | std::uint32_t(both[x]) << 24;
+                dst[along_x[x]] =
+                    std::uint32_t(here[x]) | std::uint32_t(below[x]) << 8 | std::uint32_t(behind[x]) << 16 | std::uint32_t(both[x]) << 24;
         }
     return out;
 }
@@ -64,12 +83,23 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
     grid_.size = volume.size;
     grid_.directions = volume.directions;
     grid_.origin = volume.origin;
+    const VkExtent3D extent = packed_extent(volume);
+    const std::uint32_t max_extent = pool.context().limits().maxImageDimension3D;
+    const bool packable = std::uint64_t(extent.width) * extent.height * extent.depth * 4 <= kMaxPackedBytes && extent.width <= max_extent &&
+                          extent.height <= max_extent && extent.depth <= max_extent;
+    if (layout == GreyLayout::packed && !packable)
+        throw std::invalid_argument("volume of " + std::to_string(volume.size[0]) + " x " + std::to_string(volume.size[1]) + " x " +
+                                    std::to_string(volume.size[2]) + " voxels: too large to pack for this device (its image " +
+                                    std::to_string(extent.width) + " x " + std::to_string(extent.height) + " x " +
+                                    std::to_string(extent.depth) + ", at most " + std::to_string(max_extent) + " a side and " +
+                                    std::to_string(kMaxPackedBytes >> 20) + " MiB)");
     packed_ = layout == GreyLayout::packed ||
-              (layout == GreyLayout::best && pool.context().device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-               volume.voxel_count() * 4 <= kMaxPackedBytes);
+              (layout == GreyLayout::best && pool.context().device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU && packable);
     if (packed_) {
         const std::vector<std::uint32_t> texels = pack_neighbours(volume);
-        grey_ = volume_image(pool, volume, VK_FORMAT_R8G8B8A8_UNORM, std::as_bytes(std::span(texels)));
+        grey_ = gpu::Image(pool.context(), extent, VK_FORMAT_R8G8B8A8_UNORM,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        gpu::upload_image(pool, grey_, std::as_bytes(std::span(texels)), kRead);
     } else {
         grey_ = volume_image(pool, volume, VK_FORMAT_R8_UNORM, std::as_bytes(std::span(volume.data)));
     }

@@ -46,8 +46,9 @@ namespace echosim::image {
 
 // A volume and its labels as the kernels sample them: uint8 grey levels (UNORM8, trilinear) and
 // uint8 tissue codes (nearest) on the same grid. On a CPU device (lavapipe) the grey levels are
-// packed with their neighbours, four to a texel (slice_bindings.h, SLICE_PACKED), while that takes
-// at most 2 GiB: four times the memory, for a slice about twice as fast there. Without labels a one-voxel map stands in and the
+// packed with their neighbours, four to a texel, in tiles (slice_bindings.h, SLICE_PACKED), while
+// that takes at most 2 GiB and an image the device can make: four times the memory, for a slice
+// about twice as fast there. Without labels a one-voxel map stands in and the
 // deformation is the paper's linear one. Throws (std::invalid_argument, gpu::VulkanError) naming
 // what does not fit: voxel types, grids, a size the device cannot hold.
 // How the grey levels are held: as the device suits best (packed on a CPU device within the

@@ -9,6 +9,9 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <gtest/gtest.h>
 
@@ -107,6 +110,45 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
         }
     }
     EXPECT_EQ(messages->load(), 0u);
+}
+
+// The packed layout's tiles (slice_bindings.h, packed_texel) fold into further rows of the image
+// past SLICE_TILES_A_ROW tiles (512 voxels of x): a plane turned 20 degrees against a volume 603
+// voxels wide, its x ending in a part tile and its y (10) not a multiple of 4, crosses the fold, part
+// tiles and every z layer; the packed volume's slice must be its CPU twin's everywhere.
+TEST(EchoImageGpu, APackedVolumeWiderThanAnImageRowSlicesAsItsCpuTwin)
+{
+    session::Session s;
+    const Pose rest = s.probe().rest;
+    echo::EchoFrame frame = *s.view().echo;
+    frame.columns.clear();
+    io::Volume grey = io::make_volume({603, 10, 7}, io::VoxelType::uint8);
+    std::mt19937 random(7);
+    for (std::uint8_t& v : grey.data) v = std::uint8_t(random() % 256u);
+    // 0.08 mm across (48 mm), 6 mm along the beam (60 mm), 3 mm in elevation, about the image's middle
+    const glm::quat turn = glm::angleAxis(glm::radians(20.0f), rest.axis_y()) * glm::angleAxis(glm::radians(3.0f), rest.axis_x());
+    grey.directions = glm::dmat3(glm::mat3_cast(turn * rest.orientation)) * glm::dmat3(glm::dvec3(0.08, 0, 0), glm::dvec3(0, 6, 0),
+                                                                                       glm::dvec3(0, 0, 3));
+    const glm::dvec3 centre = glm::dvec3(rest.position) + 25.0 * glm::dvec3(rest.axis_y());
+    grey.origin = centre - grey.directions * glm::dvec3(301, 4.5, 3);
+
+    gpu::Context ctx(test::lavapipe_options());
+    gpu::CommandPool pool(ctx);
+    const auto volume = std::make_shared<const EchoVolumeGpu>(pool, grey, nullptr, GreyLayout::packed);
+    EXPECT_EQ(volume->grey().extent().width, 2048u);
+    EXPECT_EQ(volume->grey().extent().height, 2u * 3u) << "two folds of three rows";
+    EchoImageGpu image(ctx, volume, s.image_plane(), s.patient());
+    const echo::EchoImage gpu = image.render(pool, frame);
+    const echo::EchoImage cpu = echo::render_echo_cpu(grey, nullptr, s.image_plane(), frame, image.scanner(), s.patient());
+    ASSERT_EQ(gpu.grey.size(), cpu.grey.size());
+    std::size_t inside = 0, apart = 0;
+    for (std::size_t i = 0; i < cpu.grey.size(); ++i) {
+        inside += cpu.grey[i] > 0.0f;
+        apart += std::abs(gpu.grey[i] - cpu.grey[i]) > 1.0f;
+    }
+    EXPECT_GT(double(inside), 0.95 * double(cpu.grey.size())) << "the plane lies in the volume";
+    EXPECT_EQ(apart, 0u) << "pixels more than a grey level from the CPU twin's";
+    EXPECT_EQ(ctx.validation_counter()->load(), 0u);
 }
 
 TEST(EchoImageGpu, RefusesVolumesItCannotRead)
