@@ -90,11 +90,11 @@ double update(const GridLayout& grid, const GridSystem& g, float alpha, CgVector
 
 }  // namespace
 
-CgVectors make_cg_vectors(std::size_t nodes, int cols, int parts)
+CgVectors make_cg_vectors(const GridLayout& grid, int parts)
 {
     CgVectors v;
-    for (std::vector<float>* p : {&v.rhs, &v.dv, &v.residual, &v.z, &v.direction, &v.product}) p->assign(3 * nodes, 0.0f);
-    v.rows.assign(std::size_t(parts), RowBuffers<3>(cols));
+    for (std::vector<float>* p : {&v.rhs, &v.dv, &v.residual, &v.z, &v.direction, &v.product}) p->assign(3 * grid.n, 0.0f);
+    v.scratch = make_product_scratch(grid, parts);
     return v;
 }
 
@@ -105,7 +105,7 @@ CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& g, CgV
     CgResult out;
 
     // r = b - A x0 from the warm start; z = P r, the first direction
-    system_product(model, g, v.dv.data(), v.product.data(), v.rows, team);
+    system_product(model, g, v.dv.data(), v.product.data(), v.scratch, team);
     std::array<double, ForkJoin::kMaxParts> partial{};
     team.run([&](int part) {
         const auto [begin, end] = part_nodes(grid, part, team.parts());
@@ -131,7 +131,7 @@ CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& g, CgV
             return out;
         }
         if (rr <= stop_rr) break;
-        const double pap = system_product(model, g, v.direction.data(), v.product.data(), v.rows, team);
+        const double pap = system_product(model, g, v.direction.data(), v.product.data(), v.scratch, team);
         if (!std::isfinite(pap)) {  // (a NaN in the preconditioner or the product would pass for convergence below)
             out.finite = false;
             return out;

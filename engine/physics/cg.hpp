@@ -15,10 +15,10 @@ namespace echosim::physics {
 
 struct CgVectors {
     std::vector<float> rhs, dv, residual, z, direction, product;  // 3n floats each, as planes
-    std::vector<RowBuffers<3>> rows;  // the product's, one per part of the team
+    ProductScratch scratch;  // the product's
 };
 
-CgVectors make_cg_vectors(std::size_t nodes, int cols, int parts);
+CgVectors make_cg_vectors(const GridLayout& grid, int parts);
 
 struct CgResult {
     int iterations = 0;

@@ -113,7 +113,18 @@ GridSystem make_grid_system(const GridLayout& grid)
     g.diagonal.assign(6 * grid.n, 0.0f);
     g.inverse.assign(6 * grid.n, 0.0f);
     g.contacts.reserve(1024);
+    g.contact_nodes.reserve(grid.n);
+    g.contact_place.assign(grid.n, GridSystem::kNoPlace);
     return g;
+}
+
+ProductScratch make_product_scratch(const GridLayout& grid, int parts)
+{
+    ProductScratch s;
+    s.rows.assign(std::size_t(parts), RowBuffers<3>(grid.cols));
+    s.along.reserve(grid.n);
+    s.sum.reserve(grid.n);
+    return s;
 }
 
 void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem& g, ForkJoin& team)
@@ -142,12 +153,22 @@ void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem
     // contacts: (h^2 + h tau) k (w a)(w a)^T
     const double scale = h2 + h * model.penalty.damping_time;
     g.contacts.clear();
+    for (std::uint32_t node : g.contact_nodes) g.contact_place[node] = GridSystem::kNoPlace;
+    g.contact_nodes.clear();
     for (const contact::Contact& c : s.contacts.contacts) {
         const double root = std::sqrt(scale * c.stiffness);
         // g is zero at a fixed node, whose row of A is the identity on zero (p is zero there)
-        std::array<float, 3> weights;
-        for (int k = 0; k < 3; ++k) weights[std::size_t(k)] = float(root * c.weights[k]) * model.free[c.nodes[std::size_t(k)]];
-        g.contacts.push_back({c.nodes, weights});
+        ContactTerm term;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t node = c.nodes[k];
+            term.g[k] = float(root * c.weights[int(k)]) * model.free[node];
+            if (g.contact_place[node] == GridSystem::kNoPlace) {
+                g.contact_place[node] = std::uint32_t(g.contact_nodes.size());
+                g.contact_nodes.push_back(node);
+            }
+            term.nodes[k] = g.contact_place[node];
+        }
+        g.contacts.push_back(term);
     }
     for (int c = 0; c < 3; ++c) g.axis[std::size_t(c)] = float(s.contacts.axis[c]);
 
@@ -160,8 +181,8 @@ void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem
     const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
     const float aa[6] = {ax * ax, ay * ay, az * az, ax * ay, ax * az, ay * az};
     for (const ContactTerm& c : g.contacts)
-        for (int k = 0; k < 3; ++k)
-            for (int e = 0; e < 6; ++e) g.inverse[std::size_t(e) * n + c.nodes[std::size_t(k)]] += c.g[std::size_t(k)] * c.g[std::size_t(k)] * aa[e];
+        for (std::size_t k = 0; k < 3; ++k)
+            for (std::size_t e = 0; e < 6; ++e) g.inverse[e * n + g.contact_nodes[c.nodes[k]]] += c.g[k] * c.g[k] * aa[e];
     team.run([&](int part) {
         const auto [begin, end] = part_nodes(grid, part, parts);
         invert_blocks(n, model.free, g, begin, end);
@@ -245,35 +266,40 @@ ECHOSIM_SIMD_CLONES double product_rows(const GridLayout& grid, const std::vecto
 
 }  // namespace
 
-double system_product(const CompiledModel& model, const GridSystem& g, const float* p, float* out,
-                      std::vector<RowBuffers<3>>& rows, ForkJoin& team)
+double system_product(const CompiledModel& model, const GridSystem& g, const float* p, float* out, ProductScratch& scratch, ForkJoin& team)
 {
     const GridLayout& grid = model.grid;
     std::array<double, ForkJoin::kMaxParts> partial{};
     team.run([&](int part) {
         const auto [begin, end] = part_rows(grid, part, team.parts());
-        partial[std::size_t(part)] = product_rows(grid, model.free, g, p, out, rows[std::size_t(part)], int(begin), int(end));
+        partial[std::size_t(part)] = product_rows(grid, model.free, g, p, out, scratch.rows[std::size_t(part)], int(begin), int(end));
     });
     double pap = 0;
     for (int part = 0; part < team.parts(); ++part) pap += partial[std::size_t(part)];
-    // the probe's contacts: rank-one blocks along the axis over each sample's triangle
+    // the probe's contacts: rank-one blocks along the axis over each sample's triangle, gathered
+    // from and scattered to the listed nodes once each
     const std::size_t n = grid.n;
     const float ax = g.axis[0], ay = g.axis[1], az = g.axis[2];
+    scratch.along.resize(g.contact_nodes.size());  // within the capacity reserved
+    scratch.sum.resize(g.contact_nodes.size());
+    float* __restrict along = scratch.along.data();
+    float* __restrict sum = scratch.sum.data();
+    for (std::size_t j = 0; j < g.contact_nodes.size(); ++j) {
+        const std::size_t m = g.contact_nodes[j];
+        along[j] = ax * p[m] + ay * p[n + m] + az * p[2 * n + m];
+        sum[j] = 0;
+    }
     double contact_pap = 0;
     for (const ContactTerm& c : g.contacts) {
-        float t = 0;
-        for (int k = 0; k < 3; ++k) {
-            const std::size_t m = c.nodes[std::size_t(k)];
-            t += c.g[std::size_t(k)] * (ax * p[m] + ay * p[n + m] + az * p[2 * n + m]);
-        }
-        for (int k = 0; k < 3; ++k) {
-            const std::size_t m = c.nodes[std::size_t(k)];
-            const float f = c.g[std::size_t(k)] * t;  // zero at a fixed node: its g is
-            out[m] += f * ax;
-            out[n + m] += f * ay;
-            out[2 * n + m] += f * az;
-        }
+        const float t = c.g[0] * along[c.nodes[0]] + c.g[1] * along[c.nodes[1]] + c.g[2] * along[c.nodes[2]];
+        for (std::size_t k = 0; k < 3; ++k) sum[c.nodes[k]] += c.g[k] * t;  // zero at a fixed node: its g is
         contact_pap += double(t) * double(t);  // p . K_c p
+    }
+    for (std::size_t j = 0; j < g.contact_nodes.size(); ++j) {
+        const std::size_t m = g.contact_nodes[j];
+        out[m] += sum[j] * ax;
+        out[n + m] += sum[j] * ay;
+        out[2 * n + m] += sum[j] * az;
     }
     return pap + contact_pap;
 }

@@ -32,7 +32,7 @@ struct TissueState;
 
 // One contact sample as the product sees it: K_c p = (sum_k g_k a.p_k) g_m a at node m, g_k the
 // square root of the contact's stiffness (with h folded in) times its barycentric weight, and zero
-// at a fixed node [sqrt(N s^2/mm)].
+// at a fixed node [sqrt(N s^2/mm)]. Its nodes are named by their place in GridSystem::contact_nodes.
 struct ContactTerm {
     std::array<std::uint32_t, 3> nodes{};
     std::array<float, 3> g{};
@@ -47,7 +47,23 @@ struct GridSystem {
     std::vector<float> inverse;
     std::array<float, 3> axis{0, 1, 0};  // the probe axis the contacts push along
     std::vector<ContactTerm> contacts;
+    // The nodes the contacts touch, each once: the samples share their nodes (some 1,300 samples,
+    // a third as many nodes), so the product reads each node's p and adds to its row once, from a
+    // compact list, rather than three times a sample at scattered places. contact_place[node] is
+    // the node's index in the list, or kNoPlace. Sized once (make_grid_system): a step allocates
+    // nothing.
+    static constexpr std::uint32_t kNoPlace = 0xffffffffu;
+    std::vector<std::uint32_t> contact_nodes;
+    std::vector<std::uint32_t> contact_place;
 };
+
+// The product's working memory.
+struct ProductScratch {
+    std::vector<RowBuffers<3>> rows;  // one per part of the team
+    std::vector<float> along, sum;    // per contact node: a . p, and the contacts' sum for its row
+};
+
+ProductScratch make_product_scratch(const GridLayout& grid, int parts);
 
 GridSystem make_grid_system(const GridLayout& grid);
 
@@ -57,8 +73,8 @@ GridSystem make_grid_system(const GridLayout& grid);
 void prepare_system(const CompiledModel& model, const TissueState& state, GridSystem& system, ForkJoin& team);
 
 // out = A p over plane vectors of 3n floats; returns p . out (accumulated in double). The rows are
-// shared by `team`, each part with its row buffers rows[part].
-double system_product(const CompiledModel& model, const GridSystem& system, const float* p, float* out,
-                      std::vector<RowBuffers<3>>& rows, ForkJoin& team);
+// shared by `team`, each part with its row buffers scratch.rows[part].
+double system_product(const CompiledModel& model, const GridSystem& system, const float* p, float* out, ProductScratch& scratch,
+                      ForkJoin& team);
 
 }  // namespace echosim::physics

@@ -20,7 +20,7 @@ TissueState make_state(const CompiledModel& model)
     // the rest stiffness, until a step linearises
     for (std::size_t i = 0; i < n; ++i) s.normal_stiffness[i] = 1.0 / model.tissue.b[i];
     s.system = make_grid_system(model.grid);
-    s.cg = make_cg_vectors(n, model.grid.cols, parts);
+    s.cg = make_cg_vectors(model.grid, parts);
     s.contacts = contact::make_contact_set(model.surface);
     s.system.contacts.reserve(s.contacts.contacts.capacity());  // so a step never grows it
     reset_to_rest(model, s);

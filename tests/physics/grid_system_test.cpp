@@ -38,7 +38,7 @@ TEST_P(GridSystemThreads, ProductMatchesTheAssembledMatrix)
     const Eigen::VectorXd p = random_vector(d.compiled);
     std::vector<float> out(std::size_t(p.size()));
     const std::vector<float> pp = planes_of(p);
-    const double pap = system_product(d.compiled, d.state.system, pp.data(), out.data(), d.state.cg.rows, d.team);
+    const double pap = system_product(d.compiled, d.state.system, pp.data(), out.data(), d.state.cg.scratch, d.team);
 
     Eigen::VectorXd expected = a * p;
     for (std::size_t i = 0; i < d.model.node_count(); ++i)
@@ -67,7 +67,7 @@ TEST_P(GridSystemThreads, ProductMatchesOnTheGridsEdgesToo)
     const Eigen::VectorXd p = random_vector(*unfixed);
     std::vector<float> out(std::size_t(p.size()));
     const std::vector<float> pp = planes_of(p);
-    system_product(*unfixed, system, pp.data(), out.data(), d.state.cg.rows, d.team);
+    system_product(*unfixed, system, pp.data(), out.data(), d.state.cg.scratch, d.team);
     const Eigen::VectorXd expected = a * p;
     const Eigen::VectorXd error = interleaved_of(out) - expected;
     EXPECT_LT(error.norm(), 1e-5 * expected.norm());
