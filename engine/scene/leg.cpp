@@ -94,10 +94,12 @@ LegModel::LegModel(const LegOptions& options)
     const int seg1 = int(std::lround(332.0f * kDeg / seg_angle));
 
     TubeMeshOptions leg_mesh;
-    leg_mesh.rings_per_span = options.rings_per_span;
-    leg_mesh.segments = options.segments;
+    leg_mesh.rings_per_span = options.other_rings_per_span;
+    leg_mesh.segments = options.other_segments;
     leg_mesh.color = kSkin;
     static_mesh_ = build_tube(left_leg_, leg_mesh);
+    leg_mesh.rings_per_span = options.rings_per_span;
+    leg_mesh.segments = options.segments;
     leg_mesh.skip_cell = [&](int ring, int seg) { return ring >= ring0 && ring < ring1 && seg >= seg0 && seg < seg1; };
     static_mesh_.append(build_tube(right_leg_, leg_mesh));
 
