@@ -66,9 +66,8 @@ void main()
             vec3 lo = clamp(floor(index), vec3(0.0), max(size - 2.0, vec3(0.0)));
             uvec3 at = uvec3(lo);
             uvec3 far_x = at + uvec3(min(1u, voxels.x - 1u), 0u, 0u);  // a volume one voxel wide has no far column
-            uint rows = packed_rows(voxels.y);
-            float sample_ = packed_trilinear(texelFetch(volume, ivec3(packed_texel(at, rows)), 0),
-                                             texelFetch(volume, ivec3(packed_texel(far_x, rows)), 0), index - lo);
+            float sample_ = packed_trilinear(texelFetch(volume, ivec3(packed_texel(at, s.fold_bits)), 0),
+                                             texelFetch(volume, ivec3(packed_texel(far_x, s.fold_bits)), 0), index - lo);
             grey = inside_volume(index, size) ? sample_ * 255.0 : 0.0;
         } else {
             grey = inside_volume(index, size) ? texture(volume, (index + 0.5) / size).r * 255.0 : 0.0;

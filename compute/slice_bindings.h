@@ -47,7 +47,7 @@ struct SliceParams {
     uint volume_x;     // the volume's voxels along each axis (a packed volume's image is another shape)
     uint volume_y;
     uint volume_z;
-    uint unused;       // (std140: the struct a multiple of 16 bytes)
+    uint fold_bits;    // a packed volume's folds (packed_texel): at most 2^fold_bits
 };
 
 // A frame's parameters of the fused slice and post stages (a uniform buffer: more than push
@@ -69,19 +69,26 @@ struct SliceFrame {
 // cache line is one tile, where a plain layout gave a line 16 texels of one row: a plane through
 // the volume that is not its (x, y) plane crossed into a new line every few texels (an oblique
 // 0.1 mm slice ran at 60 % of a nearly aligned one). An image row holds at most SLICE_TILES_A_ROW
-// tiles; a wider volume's further tiles fold into further rows below (an image can be 2048 texels
-// wide where a device allows no more).
+// tiles (an image can be 2048 texels wide where a device allows no more); a wider volume's further
+// tiles fold into the rows between, 2^fold_bits rows for each four of y. Shifts and masks only:
+// this runs twice a pixel, and a multiply there cost the slice 5 %.
 #define SLICE_TILES_A_ROW 128u  // 4 x 4 tiles a row of a packed volume's image at most (2048 texels)
+#define SLICE_TILES_A_ROW_BITS 7u
 
-// The image rows one fold of a packed volume takes: one for each four of y.
-KERNEL_FN uint packed_rows(uint voxels_y) { return (voxels_y + 3u) >> 2u; }
+// The fold_bits of a packed volume `voxels_x` wide: 2^fold_bits folds hold its tiles.
+KERNEL_FN uint packed_fold_bits(uint voxels_x)
+{
+    uint tiles = (voxels_x + 3u) >> 2u, bits = 0u;
+    while ((SLICE_TILES_A_ROW << bits) < tiles) ++bits;
+    return bits;
+}
 
-// Where texel `at` of a packed volume lies in its image, `rows` being packed_rows of its y size.
-KERNEL_FN uvec3 packed_texel(uvec3 at, uint rows)
+// Where texel `at` of a packed volume lies in its image; fold_bits is SliceParams::fold_bits.
+KERNEL_FN uvec3 packed_texel(uvec3 at, uint fold_bits)
 {
     uint tile = at.x >> 2u;
-    return uvec3(((tile % SLICE_TILES_A_ROW) << 4u) | (at.x & 3u) | ((at.y & 3u) << 2u), (at.y >> 2u) + rows * (tile / SLICE_TILES_A_ROW),
-                 at.z);
+    uint u = ((tile & (SLICE_TILES_A_ROW - 1u)) << 4u) | (at.x & 3u) | ((at.y & 3u) << 2u);
+    return uvec3(u, ((at.y >> 2u) << fold_bits) | (tile >> SLICE_TILES_A_ROW_BITS), at.z);
 }
 
 KERNEL_FN float packed_trilinear(vec4 near_x, vec4 far_x, vec3 f)

@@ -139,7 +139,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                std::uint32_t(grid.size[0]),
                std::uint32_t(grid.size[1]),
                std::uint32_t(grid.size[2]),
-               0u};
+               kernels::packed_fold_bits(std::uint32_t(grid.size[0]))};
     k.post.columns = plane.columns;
     k.post.rows = plane.rows;
     k.post.pixel_x_mm = px;

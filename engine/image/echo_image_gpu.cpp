@@ -1,6 +1,7 @@
 #include "image/echo_image_gpu.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -26,26 +27,26 @@ gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat fo
 // device's memory (the host's); beyond it the R8 volume and the trilinear sampler serve.
 constexpr std::uint64_t kMaxPackedBytes = std::uint64_t(2) << 30;
 
-// A packed volume's image (slice_bindings.h): its tiles a row, folded below where there are more.
+// A packed volume's image (slice_bindings.h): its tiles a row, the rows of its folds between.
 VkExtent3D packed_extent(const io::Volume& v)
 {
-    const std::uint64_t tiles = (v.size[0] + 3) / 4, folds = (tiles + SLICE_TILES_A_ROW - 1) / SLICE_TILES_A_ROW;
-    const std::uint64_t rows = kernels::packed_rows(std::uint32_t(v.size[1])) * folds;
-    return {std::uint32_t(std::min<std::uint64_t>(tiles, SLICE_TILES_A_ROW) * 16), std::uint32_t(rows), std::uint32_t(v.size[2])};
+    const std::uint64_t tiles = (v.size[0] + 3) / 4, rows = (v.size[1] + 3) / 4;
+    const std::uint64_t height = std::min<std::uint64_t>(rows << kernels::packed_fold_bits(std::uint32_t(v.size[0])), UINT32_MAX);
+    return {std::uint32_t(std::min<std::uint64_t>(tiles, SLICE_TILES_A_ROW) * 16), std::uint32_t(height), std::uint32_t(v.size[2])};
 }
 
 // The volume as slice_bindings.h's packed texels, each where packed_texel puts it: at each x, the
 // grey levels of (y, z), (y + 1, z), (y, z + 1), (y + 1, z + 1), the far neighbours clamped to the
-// edge. packed_texel's terms of x and of y lie in separate bits or add, so a texel's place is the
-// sum of its x's and its (y, z)'s, each worked out once.
+// edge. packed_texel's terms of x and of y lie in separate bits, so a texel's place is the sum of
+// its x's and its (y, z)'s, each worked out once.
 std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
 {
     const std::size_t nx = v.size[0], ny = v.size[1], nz = v.size[2];
     const auto* g = v.as<std::uint8_t>();
     const VkExtent3D extent = packed_extent(v);
-    const std::uint32_t rows = kernels::packed_rows(std::uint32_t(ny));
+    const std::uint32_t fold_bits = kernels::packed_fold_bits(std::uint32_t(nx));
     const auto place = [&](std::size_t x, std::size_t y, std::size_t z) {
-        const kernels::uvec3 t = kernels::packed_texel({std::uint32_t(x), std::uint32_t(y), std::uint32_t(z)}, rows);
+        const kernels::uvec3 t = kernels::packed_texel({std::uint32_t(x), std::uint32_t(y), std::uint32_t(z)}, fold_bits);
         return (std::size_t(t.z) * extent.height + t.y) * extent.width + t.x;
     };
     std::vector<std::uint32_t> out(std::size_t(extent.width) * extent.height * extent.depth, 0u);

@@ -112,8 +112,8 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
     EXPECT_EQ(messages->load(), 0u);
 }
 
-// The packed layout's tiles (slice_bindings.h, packed_texel) fold into further rows of the image
-// past SLICE_TILES_A_ROW tiles (512 voxels of x): a plane turned 20 degrees against a volume 603
+// The packed layout's tiles (slice_bindings.h, packed_texel) fold into rows between past
+// SLICE_TILES_A_ROW tiles (512 voxels of x): a plane turned 20 degrees against a volume 603
 // voxels wide, its x ending in a part tile and its y (10) not a multiple of 4, crosses the fold, part
 // tiles and every z layer; the packed volume's slice must be its CPU twin's everywhere.
 TEST(EchoImageGpu, APackedVolumeWiderThanAnImageRowSlicesAsItsCpuTwin)
@@ -136,7 +136,7 @@ TEST(EchoImageGpu, APackedVolumeWiderThanAnImageRowSlicesAsItsCpuTwin)
     gpu::CommandPool pool(ctx);
     const auto volume = std::make_shared<const EchoVolumeGpu>(pool, grey, nullptr, GreyLayout::packed);
     EXPECT_EQ(volume->grey().extent().width, 2048u);
-    EXPECT_EQ(volume->grey().extent().height, 2u * 3u) << "two folds of three rows";
+    EXPECT_EQ(volume->grey().extent().height, 2u * 3u) << "two folds, three rows each";
     EchoImageGpu image(ctx, volume, s.image_plane(), s.patient());
     const echo::EchoImage gpu = image.render(pool, frame);
     const echo::EchoImage cpu = echo::render_echo_cpu(grey, nullptr, s.image_plane(), frame, image.scanner(), s.patient());
