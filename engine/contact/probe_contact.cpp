@@ -84,6 +84,10 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
             const Eigen::Vector3d b = to_local * (node(x, tri[1]) - probe.position);
             const Eigen::Vector3d c = to_local * (node(x, tri[2]) - probe.position);
             if (std::min({a.y(), b.y(), c.y()}) >= 0.0) continue;  // wholly beyond the face
+            // wholly beside the face (its samples, inside the triangle, are too): the skin around a
+            // pressed probe lies in front of its face and fills the broad phase's box
+            if (std::min({a.x(), b.x(), c.x()}) > hw || std::max({a.x(), b.x(), c.x()}) < -hw) continue;
+            if (std::min({a.z(), b.z(), c.z()}) > ht || std::max({a.z(), b.z(), c.z()}) < -ht) continue;
             const double area = surface.sample_area[t];
             for_each_sample(surface.subdivision[t], [&](double wb, double wc) {
                 const double wa = 1.0 - wb - wc;
