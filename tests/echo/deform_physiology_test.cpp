@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/probe_spec.hpp"
 #include "echo/echo_image_cpu.hpp"
 #include "echo/echo_test_volumes.hpp"
 #include "session/session.hpp"
@@ -53,10 +54,15 @@ Exam examine(Case which, double force_N)
     const session::SessionView& view = s.view();
     EchoFrame pressed = *view.echo;
     pressed.time_s = 0;  // diastole: the artery at its narrowest
+    // the skin's pressure at the exam's force, the settle's last window's mean: a deep press's
+    // contact ripples (settled.ripple_N), and the artery, at its onset at this force, would read
+    // the ripple's phase at the last step instead (0.2 or 0.9 % of lumen lost, as the build's
+    // rounding fell)
+    e.force_N = settled.force_N;
+    pressed.skin_pressure_kpa = 1000.0 * e.force_N / (kLinearProbe.face_width_mm * kLinearProbe.face_thickness_mm);
     e.pressed = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), pressed, {}, s.patient(), true));
-    e.force_N = settled.force_N;  // the mean over the settle's last window (the contact ripples at deep presses)
-    std::printf("%s at %.1f N: vein %.0f -> %.0f px, artery %.0f -> %.0f px\n", case_name(which), e.force_N, e.rest.vein, e.pressed.vein,
-                e.rest.artery, e.pressed.artery);
+    std::printf("%s at %.1f N (+-%.2f N, %.2f N at the last step): vein %.0f -> %.0f px, artery %.0f -> %.0f px\n", case_name(which),
+                e.force_N, settled.ripple_N, view.probe_force_N, e.rest.vein, e.pressed.vein, e.rest.artery, e.pressed.artery);
     return e;
 }
 
