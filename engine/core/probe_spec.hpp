@@ -13,6 +13,9 @@ struct ProbeSpec {
     double face_thickness_mm = 10.0; // the face across the array (probe z)
     double image_depth_mm = 50.0;    // how deep the image reaches along the beam (probe y)
     double frequency_mhz = 10.0;     // centre frequency of the transmitted pulse
+
+    // The pressure a force on the probe puts on the skin under its face, spread evenly [kPa]
+    constexpr double face_pressure_kpa(double force_N) const { return 1000.0 * force_N / (face_width_mm * face_thickness_mm); }
 };
 
 // The 7.5-12 MHz linear vascular probe of the compression exam.

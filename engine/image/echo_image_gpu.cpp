@@ -15,13 +15,15 @@ namespace {
 
 constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
-gpu::Image volume_image(gpu::CommandPool& pool, const io::Volume& v, VkFormat format, std::span<const std::byte> texels)
+// A sampled 3-D image of `extent` texels, uploaded; extent_of(v) gives a volume's own grid.
+gpu::Image volume_image(gpu::CommandPool& pool, VkExtent3D extent, VkFormat format, std::span<const std::byte> texels)
 {
-    gpu::Image image(pool.context(), VkExtent3D{std::uint32_t(v.size[0]), std::uint32_t(v.size[1]), std::uint32_t(v.size[2])}, format,
-                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    gpu::Image image(pool.context(), extent, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     gpu::upload_image(pool, image, texels, kRead);
     return image;
 }
+
+VkExtent3D extent_of(const io::Volume& v) { return {std::uint32_t(v.size[0]), std::uint32_t(v.size[1]), std::uint32_t(v.size[2])}; }
 
 // The largest packed volume made [bytes]: four times the voxels and a little padding, in a CPU
 // device's memory (the host's); beyond it the R8 volume and the trilinear sampler serve.
@@ -98,17 +100,15 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
               (layout == GreyLayout::best && pool.context().device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU && packable);
     if (packed_) {
         const std::vector<std::uint32_t> texels = pack_neighbours(volume);
-        grey_ = gpu::Image(pool.context(), extent, VK_FORMAT_R8G8B8A8_UNORM,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-        gpu::upload_image(pool, grey_, std::as_bytes(std::span(texels)), kRead);
+        grey_ = volume_image(pool, extent, VK_FORMAT_R8G8B8A8_UNORM, std::as_bytes(std::span(texels)));
     } else {
-        grey_ = volume_image(pool, volume, VK_FORMAT_R8_UNORM, std::as_bytes(std::span(volume.data)));
+        grey_ = volume_image(pool, extent_of(volume), VK_FORMAT_R8_UNORM, std::as_bytes(std::span(volume.data)));
     }
     if (labels) {
-        labels_ = volume_image(pool, *labels, VK_FORMAT_R8_UINT, std::as_bytes(std::span(labels->data)));
+        labels_ = volume_image(pool, extent_of(*labels), VK_FORMAT_R8_UINT, std::as_bytes(std::span(labels->data)));
     } else {
         io::Volume none = io::make_volume({1, 1, 1}, io::VoxelType::uint8);
-        labels_ = volume_image(pool, none, VK_FORMAT_R8_UINT, std::as_bytes(std::span(none.data)));
+        labels_ = volume_image(pool, extent_of(none), VK_FORMAT_R8_UINT, std::as_bytes(std::span(none.data)));
     }
 }
 

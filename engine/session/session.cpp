@@ -183,7 +183,7 @@ const SessionView& Session::view()
     // the image's input from the same snapshot; before the first step the skin lies at rest
     echo_.face = view_.probe;
     echo_.time_s = snap.time;
-    echo_.skin_pressure_kpa = 1000.0 * snap.probe_force_N / (kLinearProbe.face_width_mm * kLinearProbe.face_thickness_mm);
+    echo_.skin_pressure_kpa = kLinearProbe.face_pressure_kpa(snap.probe_force_N);
     // not touching: the image is the volume's own (which was taken with the tissue under its own
     // weight, as it lies now; the nodes' sag under gravity is no indentation)
     if (snap.positions.empty() || snap.contacts == 0)

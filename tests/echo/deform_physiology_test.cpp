@@ -59,7 +59,7 @@ Exam examine(Case which, double force_N)
     // the ripple's phase at the last step instead (0.2 or 0.9 % of lumen lost, as the build's
     // rounding fell)
     e.force_N = settled.force_N;
-    pressed.skin_pressure_kpa = 1000.0 * e.force_N / (kLinearProbe.face_width_mm * kLinearProbe.face_thickness_mm);
+    pressed.skin_pressure_kpa = kLinearProbe.face_pressure_kpa(e.force_N);
     e.pressed = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), pressed, {}, s.patient(), true));
     std::printf("%s at %.1f N (+-%.2f N, %.2f N at the last step): vein %.0f -> %.0f px, artery %.0f -> %.0f px\n", case_name(which),
                 e.force_N, settled.ripple_N, view.probe_force_N, e.rest.vein, e.pressed.vein, e.rest.artery, e.pressed.artery);
