@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Packs what bench/device/gpu_checks.sh needs into .gpu/ (ignored through .git/info/exclude) for a
 # lent GPU machine, which has none of our Debian packages: the Release binaries (stripped), every
-# shared library they load except glibc's own, the Vulkan loader and the Khronos validation layer,
+# shared library they load except glibc's own, the Vulkan loader, glvnd's dispatch libraries (the
+# NVIDIA driver's ICD, libGLX_nvidia, needs them, and that image has none) and the Khronos validation layer,
 # in one xz tarball (.gpu/echosim-gpu.tar.xz; unpacked it is over the tool's 64 MiB a call).
 # Usage, in the repository root after a Release build in build/:
 #   bench/device/pack.sh && (device run, carry .gpu) bench/device/gpu_checks.sh
@@ -18,7 +19,10 @@ for b in build/engine/app/echosim build/tests/echosim_tests; do
 done
 # libstdc++ and libgcc_s go apart: gpu_checks.sh adds them only where the machine lacks them
 libs=$( (ldd build/engine/app/echosim; ldd build/tests/echosim_tests;
-         ldd /usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so) | awk '/=> \//{print $3}' | sort -u)
+         ldd /usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so
+         for l in libGLdispatch.so.0 libGLX.so.0 libEGL.so.1 libOpenGL.so.0 libGL.so.1; do
+             echo "$l => /usr/lib/x86_64-linux-gnu/$l"; ldd "/usr/lib/x86_64-linux-gnu/$l"; done) |
+       awk '/=> \//{print $3}' | sort -u)
 for l in $libs; do
     case $(basename "$l") in
         libc.so*|libm.so*|libdl.so*|libpthread.so*|librt.so*|ld-linux*) ;;
