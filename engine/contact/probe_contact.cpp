@@ -44,6 +44,30 @@ PatchSurface make_patch_surface(int rows, int cols, const Eigen::VectorXd& rest,
     return s;
 }
 
+ProbeDepth probe_depth(const ProbeGeometry& g, const Eigen::Vector3d& local)
+{
+    // the rounded box as a core box grown by the radius (Quilez's signed distance): from the
+    // core's surface outward is the shell, whose normal turns over the rim
+    const Eigen::Vector3d half(0.5 * g.face_width, 0.5 * g.body_depth, 0.5 * g.face_thickness);
+    const double r = std::clamp(g.edge_radius, 0.0, half.minCoeff());
+    const Eigen::Vector3d d = local - Eigen::Vector3d(0.0, -half.y(), 0.0);  // from the box's centre
+    const Eigen::Vector3d q = d.cwiseAbs() - (half - Eigen::Vector3d::Constant(r));
+    const Eigen::Vector3d beyond = q.cwiseMax(0.0);
+    const double out = beyond.norm();
+    ProbeDepth depth;
+    if (out > 0.0) {
+        depth.penetration = r - out;
+        depth.normal = beyond.cwiseProduct(d.cwiseSign()) / out;
+        if ((beyond.array() > 0.0).count() > 1) depth.turn = 1.0 / out;  // over a rounded edge or corner
+    } else {  // within the core: the nearest face's
+        Eigen::Index face = 0;
+        q.maxCoeff(&face);
+        depth.penetration = r - q[face];
+        depth.normal = Eigen::Vector3d::Unit(face) * (d[face] < 0.0 ? -1.0 : 1.0);
+    }
+    return depth;
+}
+
 ContactSet make_contact_set(const PatchSurface& surface)
 {
     ContactSet set;
@@ -76,7 +100,6 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
     set.bvh.query(box, x, set.cells);
 
     // narrow phase: the material samples of those cells' triangles that lie inside the box
-    const double rate_probe = set.axis.dot(probe.velocity);
     for (std::uint32_t cell : set.cells)
         for (std::uint32_t t = 2 * cell; t < 2 * cell + 2; ++t) {
             const auto& tri = surface.triangles[t];
@@ -93,17 +116,19 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
                 const double wa = 1.0 - wb - wc;
                 const Eigen::Vector3d p = wa * a + wb * b + wc * c;
                 if (p.y() >= 0.0 || p.y() < -g.body_depth || std::abs(p.x()) > hw || std::abs(p.z()) > ht) return;
+                const ProbeDepth depth = probe_depth(g, p);
+                if (depth.penetration <= 0.0) return;  // in the box, outside its rounded edge
+                const double facing = depth.normal.y();  // of the surface there, toward the tissue
+                if (facing <= 0.0) return;  // a side wall's: pushing along the axis it does not
                 Contact ct;
                 ct.nodes = tri;
                 ct.weights = {wa, wb, wc};
-                ct.penetration = -p.y();
-                // fade over the rounded rim: continuous as skin slides across the face's edge
-                const double rim = std::min(hw - std::abs(p.x()), ht - std::abs(p.z()));
-                const double fade = g.edge_radius > 0 ? std::min(1.0, rim / g.edge_radius) : 1.0;
-                ct.stiffness = law.slope(ct.penetration) * area * fade;
-                double skin_speed = 0;
-                for (int k = 0; k < 3; ++k) skin_speed += ct.weights[k] * set.axis.dot(v.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])));
-                ct.force = std::max(0.0, law.pressure(ct.penetration) * area * fade + law.damping_time * ct.stiffness * (rate_probe - skin_speed));
+                ct.penetration = depth.penetration;
+                ct.stiffness = area * std::max(0.0, law.slope(ct.penetration) * facing * facing -
+                                                         law.pressure(ct.penetration) * (1.0 - facing * facing) * depth.turn);
+                double closing = set.axis.dot(probe.velocity);  // the probe's speed into the skin, along the axis
+                for (int k = 0; k < 3; ++k) closing -= ct.weights[k] * set.axis.dot(v.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])));
+                ct.force = std::max(0.0, law.pressure(ct.penetration) * area * facing + law.damping_time * ct.stiffness * closing);
                 for (int k = 0; k < 3; ++k) force.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])) += (ct.weights[k] * ct.force) * set.axis;
                 set.total_force += ct.force;
                 set.contacts.push_back(ct);
@@ -114,8 +139,8 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
 
 void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out)
 {
-    // the penalty pushes along the axis with stiffness k on the sample's penetration, which moves
-    // with the weighted sum of the three nodes along the axis: K = k (w a)(w a)^T
+    // the penalty pushes along the axis with stiffness k on the sample's displacement along it,
+    // the weighted sum of the three nodes': K = k (w a)(w a)^T
     for (const Contact& c : set.contacts) {
         double along = 0;
         for (int k = 0; k < 3; ++k) along += c.weights[k] * set.axis.dot(p.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])));

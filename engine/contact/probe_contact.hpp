@@ -1,13 +1,17 @@
-// Probe-versus-skin contact (paper §5.1). The probe is an oriented box whose front face (40 x 10 mm,
-// the transducer) touches the skin; the skin is the deformable patch, a grid of triangles that may
-// become concave. Each triangle carries material sample points (barycentric, fixed on the skin, a
-// millimetre or less apart at rest); a sample that has entered the box is in contact, its
-// penetration measured from the front face along the probe axis. A non-linear penalty pressure
-// (after Deguet, Joukhadar and Laugier 1998) acts on the sample's share of the skin's rest area, and
-// its force goes to the triangle's three nodes by the sample's barycentric weights. Frictionless:
-// the force is along the probe axis only, so the probe slides freely over the gel. Because the
-// samples are material points, the contact forces derive from an energy and the skin settles under
-// a still probe (sampling the face instead would not).
+// Probe-versus-skin contact (paper §5.1). The probe is a box whose front face (40 x 10 mm, the
+// transducer) touches the skin, its edges rounded as a real transducer's are; the skin is the
+// deformable patch, a grid of triangles that may become concave. Each triangle carries material
+// sample points (barycentric, fixed on the skin, a millimetre or less apart at rest); a sample
+// inside the probe is in contact, its penetration its depth below the probe's surface (a signed
+// distance to the rounded box, so it never exceeds the edge's radius where skin wraps the rim). A
+// non-linear penalty pressure (after Deguet, Joukhadar and Laugier 1998) acts on the sample's share
+// of the skin's rest area, and the part of it along the probe axis (all of it under the face, less
+// over the rounded rim, none on the sides) goes to the triangle's three nodes by the sample's
+// barycentric weights. Along the axis only: frictionless, so the probe slides freely over the gel,
+// and the skin is not pushed sideways either. (Pushed along the surface's normal, the skin under a
+// 16 mm press slid off the rim and out from under the face: the tissue columns' lateral support is
+// what holds it, and the rim's sideways push beat it.) The samples are material points, so the
+// skin settles under a still probe (sampling the face instead would not).
 //
 // Broad phase: a BVH over the grid's cells (patch_bvh.hpp), refitted every step.
 // Memory: every buffer is sized when the ContactSet is made; a step does not allocate.
@@ -30,8 +34,11 @@ struct ProbeGeometry {
     double face_width = kLinearProbe.face_width_mm;          // along the array (probe x) [mm]
     double face_thickness = kLinearProbe.face_thickness_mm;  // elevational (probe z) [mm]
     double body_depth = 60.0;      // how far the box extends behind the face (probe -y) [mm]
-    // a real transducer's face is rounded at its rim: the pressure fades to zero over this distance
-    // from the edge, so skin sliding past the edge feels no jump [mm]
+    // a real transducer's face is rounded at its rim: the box's edges are rounded with this radius,
+    // so skin sliding past an edge feels no jump. (A sharp rim whose pressure faded over this band
+    // instead met the skin that wraps the rim under a deep press 10 mm below the face's plane, and
+    // pushed it back along the axis: it chattered in and out of contact from step to step, the
+    // force +-16 % at a 16 mm press; bench/RESULTS.md "Settling".) [mm]
     double edge_radius = 1.0;
 };
 
@@ -84,10 +91,19 @@ inline ProbeState probe_at(const Pose& face, const Eigen::Vector3d& velocity = E
 struct Contact {
     std::array<std::uint32_t, 3> nodes{};
     Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric
-    double penetration = 0;  // [mm]
+    double penetration = 0;  // below the probe's surface [mm]
     double force = 0;        // magnitude along the axis, on the tissue [N]
-    double stiffness = 0;    // d force / d penetration [N/mm]
+    double stiffness = 0;    // d force / d (the sample's displacement against the axis) [N/mm]
 };
+
+// Where a point given in the probe's frame lies against the probe: its penetration below the
+// rounded box's surface [mm] (negative outside) and the surface's outward normal (probe frame).
+struct ProbeDepth {
+    double penetration = 0;
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+    double turn = 0;  // how fast the normal turns as the point moves across it [1/mm]: 0 but over the rim
+};
+ProbeDepth probe_depth(const ProbeGeometry& geometry, const Eigen::Vector3d& local);
 
 struct ContactSet {
     Eigen::Vector3d axis = Eigen::Vector3d::UnitY();  // probe +y in world: into the tissue
@@ -107,6 +123,11 @@ int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeSta
 // Adds K_c p into `out` (3n each): the contacts' stiffness, the negated Jacobian of their forces
 // with respect to the node positions, for the implicit step's right-hand side. (The solver's
 // matrix carries the same blocks, with damping and the time step folded in: physics/grid_system.)
+// Per sample k (w a)(w a)^T, k the derivative of its force along the axis with respect to the
+// sample's displacement along it: over the rounded rim the penetration grows by the facing f and
+// the facing itself falls, k = area (slope f^2 - pressure (1 - f^2) turn), kept >= 0 so the
+// solver's matrix stays positive definite. The force's change as the skin moves across the axis
+// over the rim is left to the next step (bounded by the edge's radius; the matrix stays symmetric).
 void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out);
 
 }  // namespace echosim::contact
