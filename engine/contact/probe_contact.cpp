@@ -46,24 +46,24 @@ PatchSurface make_patch_surface(int rows, int cols, const Eigen::VectorXd& rest,
 
 ProbeDepth probe_depth(const ProbeGeometry& g, const Eigen::Vector3d& local)
 {
-    // the rounded box as a core box grown by the radius (Quilez's signed distance): from the
-    // core's surface outward is the shell, whose normal turns over the rim
-    const Eigen::Vector3d half(0.5 * g.face_width, 0.5 * g.body_depth, 0.5 * g.face_thickness);
+    // the probe's profile along its array (x, y) as a core rectangle grown by the radius (a
+    // signed distance); across the array (z) the face ends where it ends
+    const Eigen::Vector2d half(0.5 * g.face_width, 0.5 * g.body_depth);
     const double r = std::clamp(g.edge_radius, 0.0, half.minCoeff());
-    const Eigen::Vector3d d = local - Eigen::Vector3d(0.0, -half.y(), 0.0);  // from the box's centre
-    const Eigen::Vector3d q = d.cwiseAbs() - (half - Eigen::Vector3d::Constant(r));
-    const Eigen::Vector3d beyond = q.cwiseMax(0.0);
+    const Eigen::Vector2d d(local.x(), local.y() + half.y());  // from the box's centre
+    const Eigen::Vector2d q = d.cwiseAbs() - (half - Eigen::Vector2d::Constant(r));
+    const Eigen::Vector2d beyond = q.cwiseMax(0.0);
     const double out = beyond.norm();
     ProbeDepth depth;
     if (out > 0.0) {
         depth.penetration = r - out;
-        depth.normal = beyond.cwiseProduct(d.cwiseSign()) / out;
-        if ((beyond.array() > 0.0).count() > 1) depth.turn = 1.0 / out;  // over a rounded edge or corner
+        const Eigen::Vector2d n = beyond.cwiseProduct(d.cwiseSign()) / out;
+        depth.normal = Eigen::Vector3d(n.x(), n.y(), 0.0);
+        if (beyond.x() > 0.0 && beyond.y() > 0.0) depth.turn = 1.0 / out;  // over a rounded end
     } else {  // within the core: the nearest face's
-        Eigen::Index face = 0;
-        q.maxCoeff(&face);
-        depth.penetration = r - q[face];
-        depth.normal = Eigen::Vector3d::Unit(face) * (d[face] < 0.0 ? -1.0 : 1.0);
+        const bool side = q.x() > q.y();
+        depth.penetration = r - std::max(q.x(), q.y());
+        depth.normal = side ? Eigen::Vector3d(d.x() < 0.0 ? -1.0 : 1.0, 0.0, 0.0) : Eigen::Vector3d(0.0, d.y() < 0.0 ? -1.0 : 1.0, 0.0);
     }
     return depth;
 }
@@ -119,16 +119,18 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
                 const ProbeDepth depth = probe_depth(g, p);
                 if (depth.penetration <= 0.0) return;  // in the box, outside its rounded edge
                 const double facing = depth.normal.y();  // of the surface there, toward the tissue
-                if (facing <= 0.0) return;  // a side wall's: pushing along the axis it does not
+                if (facing <= 0.0) return;  // an end's: pushing along the axis it does not
+                // across the array, the pressure fades over the last edge_radius of the thickness
+                const double fade = g.edge_radius > 0 ? std::min(1.0, (ht - std::abs(p.z())) / g.edge_radius) : 1.0;
                 Contact ct;
                 ct.nodes = tri;
                 ct.weights = {wa, wb, wc};
                 ct.penetration = depth.penetration;
-                ct.stiffness = area * std::max(0.0, law.slope(ct.penetration) * facing * facing -
-                                                         law.pressure(ct.penetration) * (1.0 - facing * facing) * depth.turn);
+                ct.stiffness = area * fade * std::max(0.0, law.slope(ct.penetration) * facing * facing -
+                                                               law.pressure(ct.penetration) * (1.0 - facing * facing) * depth.turn);
                 double closing = set.axis.dot(probe.velocity);  // the probe's speed into the skin, along the axis
                 for (int k = 0; k < 3; ++k) closing -= ct.weights[k] * set.axis.dot(v.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])));
-                ct.force = std::max(0.0, law.pressure(ct.penetration) * area * facing + law.damping_time * ct.stiffness * closing);
+                ct.force = std::max(0.0, law.pressure(ct.penetration) * area * facing * fade + law.damping_time * ct.stiffness * closing);
                 for (int k = 0; k < 3; ++k) force.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])) += (ct.weights[k] * ct.force) * set.axis;
                 set.total_force += ct.force;
                 set.contacts.push_back(ct);

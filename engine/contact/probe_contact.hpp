@@ -1,17 +1,23 @@
 // Probe-versus-skin contact (paper §5.1). The probe is a box whose front face (40 x 10 mm, the
-// transducer) touches the skin, its edges rounded as a real transducer's are; the skin is the
-// deformable patch, a grid of triangles that may become concave. Each triangle carries material
-// sample points (barycentric, fixed on the skin, a millimetre or less apart at rest); a sample
-// inside the probe is in contact, its penetration its depth below the probe's surface (a signed
-// distance to the rounded box, so it never exceeds the edge's radius where skin wraps the rim). A
-// non-linear penalty pressure (after Deguet, Joukhadar and Laugier 1998) acts on the sample's share
-// of the skin's rest area, and the part of it along the probe axis (all of it under the face, less
-// over the rounded rim, none on the sides) goes to the triangle's three nodes by the sample's
-// barycentric weights. Along the axis only: frictionless, so the probe slides freely over the gel,
-// and the skin is not pushed sideways either. (Pushed along the surface's normal, the skin under a
-// 16 mm press slid off the rim and out from under the face: the tissue columns' lateral support is
-// what holds it, and the rim's sideways push beat it.) The samples are material points, so the
-// skin settles under a still probe (sampling the face instead would not).
+// transducer) touches the skin, the ends of its array rounded; the skin is the deformable patch, a
+// grid of triangles that may become concave. Each triangle carries material sample points
+// (barycentric, fixed on the skin, a millimetre or less apart at rest); a sample inside the probe
+// is in contact, its penetration its depth below the probe's surface in the plane of the array (a
+// signed distance to the rounded profile, so it stays under the edge's radius where skin wraps an
+// end). A non-linear penalty pressure (after Deguet, Joukhadar and Laugier 1998) acts on the
+// sample's share of the skin's rest area; the part of it along the probe axis (all of it under the
+// face, less over a rounded end, none beyond it), faded over the face's long edges, goes to the
+// triangle's three nodes by the sample's barycentric weights. Along the axis only: frictionless, so
+// the probe slides freely over the gel, and the skin is not pushed sideways either. The samples are
+// material points, so the skin settles under a still probe (sampling the face instead would not).
+//
+// Why this shape (bench/RESULTS.md "Settling"): with both edges sharp and the pressure faded over
+// 1 mm, skin wrapped around the array's ends under a deep press met the fade 10 mm below the face's
+// plane and, pushed back along the axis, chattered in and out of contact from step to step (the
+// force +-16 % at 16 mm). Rounding the long edges as well let the skin ahead of a probe sliding
+// along the thigh (a long edge leading) pass into the probe's side unpushed; pushing along the
+// surface's normal instead of the axis slid the frictionless skin off the rim and out from under
+// the face. The long edges keep the fade: they plow the skin under the face when the probe slides.
 //
 // Broad phase: a BVH over the grid's cells (patch_bvh.hpp), refitted every step.
 // Memory: every buffer is sized when the ContactSet is made; a step does not allocate.
@@ -34,11 +40,9 @@ struct ProbeGeometry {
     double face_width = kLinearProbe.face_width_mm;          // along the array (probe x) [mm]
     double face_thickness = kLinearProbe.face_thickness_mm;  // elevational (probe z) [mm]
     double body_depth = 60.0;      // how far the box extends behind the face (probe -y) [mm]
-    // a real transducer's face is rounded at its rim: the box's edges are rounded with this radius,
-    // so skin sliding past an edge feels no jump. (A sharp rim whose pressure faded over this band
-    // instead met the skin that wraps the rim under a deep press 10 mm below the face's plane, and
-    // pushed it back along the axis: it chattered in and out of contact from step to step, the
-    // force +-16 % at a 16 mm press; bench/RESULTS.md "Settling".) [mm]
+    // a real transducer's face is rounded at its rim: the array's ends are rounded with this radius,
+    // and across the array the pressure fades to zero over this distance from the long edges, so
+    // skin sliding past an edge feels no jump [mm]
     double edge_radius = 1.0;
 };
 
@@ -96,12 +100,13 @@ struct Contact {
     double stiffness = 0;    // d force / d (the sample's displacement against the axis) [N/mm]
 };
 
-// Where a point given in the probe's frame lies against the probe: its penetration below the
-// rounded box's surface [mm] (negative outside) and the surface's outward normal (probe frame).
+// Where a point given in the probe's frame lies against the probe's profile in the plane of the
+// array (x, y; the box behind the face, its ends rounded): its penetration below the surface [mm]
+// (negative outside) and the surface's outward normal there (probe frame; no z).
 struct ProbeDepth {
     double penetration = 0;
     Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
-    double turn = 0;  // how fast the normal turns as the point moves across it [1/mm]: 0 but over the rim
+    double turn = 0;  // how fast the normal turns as the point moves across it [1/mm]: 0 but over an end
 };
 ProbeDepth probe_depth(const ProbeGeometry& geometry, const Eigen::Vector3d& local);
 
@@ -124,10 +129,10 @@ int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeSta
 // with respect to the node positions, for the implicit step's right-hand side. (The solver's
 // matrix carries the same blocks, with damping and the time step folded in: physics/grid_system.)
 // Per sample k (w a)(w a)^T, k the derivative of its force along the axis with respect to the
-// sample's displacement along it: over the rounded rim the penetration grows by the facing f and
-// the facing itself falls, k = area (slope f^2 - pressure (1 - f^2) turn), kept >= 0 so the
+// sample's displacement along it: over a rounded end the penetration grows by the facing f and the
+// facing itself falls, k = area fade (slope f^2 - pressure (1 - f^2) turn), kept >= 0 so the
 // solver's matrix stays positive definite. The force's change as the skin moves across the axis
-// over the rim is left to the next step (bounded by the edge's radius; the matrix stays symmetric).
+// (over an end or a long edge's fade) is left to the next step; the matrix stays symmetric.
 void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out);
 
 }  // namespace echosim::contact

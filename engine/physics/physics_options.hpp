@@ -48,9 +48,7 @@ struct PhysicsOptions {
     // alone chases for ten iterations a step, half the physics thread's time. What the floor leaves
     // unbalanced keeps settled nodes trembling at about 2.5e3 mm/s per newton of it (2.5e-3 mm/s,
     // nanometres a step: under sleep_speed below, and far below anything a probe or an image
-    // resolves). (A tenth of it trembles a tenth as much, and moves the 12 N exam press of
-    // tests/echo/deform_physiology_test.cpp to another phase of the deep-press contact ripple,
-    // bench/RESULTS.md "Settling", where the artery's 1 % onset reads 0.35 %.)
+    // resolves).
     double cg_absolute_tolerance_N = 1e-6;
     int cg_max_iterations = 200;
     double max_speed = 5e4;  // [mm/s]: beyond this a node has exploded; the state is reset
@@ -62,8 +60,8 @@ struct PhysicsOptions {
     // the image far more than they move it; settled under the probe a step still costs the contact,
     // the forces and the Jacobian (a third of a core on the 2,500-node patch) to move nothing. Ten
     // micrometres a second (a micrometre over sleep_after) and a tenth of a micrometre are far
-    // below anything an image or a hand resolves; a device's own noise keeps its tissue awake, and
-    // so does the deep-press ripple. sleep_after = 0 turns sleeping off.
+    // below anything an image or a hand resolves; a device's own noise keeps its tissue awake.
+    // sleep_after = 0 turns sleeping off.
     double sleep_speed = 1e-2;      // [mm/s]
     double sleep_probe_mm = 1e-4;   // [mm]
     double sleep_after = 0.1;       // [s]

@@ -88,8 +88,9 @@ struct ProbePlacement {
 };
 
 // How a press settled (Session::press_and_settle). The force is the mean over the last
-// kSettleWindowS: under deep presses the 2,500-node patch's contact ripples from step to step
-// (bench/RESULTS.md, "Settling"), and the mean is what a hand or a force gauge would read.
+// kSettleWindowS, what a force gauge would read, with how much it moves within the window: a model
+// that rings or a contact that chatters shows there (the shipped thigh's presses, 25 mm deep
+// included, move less than a millinewton: bench/RESULTS.md, "Settling").
 struct SettleReport {
     bool settled = false;
     double press_mm = 0;  // the press it settled under [mm]

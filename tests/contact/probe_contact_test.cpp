@@ -16,12 +16,12 @@ Eigen::VectorXd flat_patch(double height, double x0, double z0, double size)
     return x;
 }
 
-// The axial pressure a flat skin feels at distance e beyond the edge of the face's flat part, the
-// skin `depth` [mm] inside the face's plane, from the geometry of a rim rounded with radius r
-// (independent of probe_depth's signed distance): the rim is a quarter circle whose centre lies r
-// inside the flat part's edge and r behind the face's plane; a skin point inside it is
-// r - |point - centre| deep, and the circle's normal there leans (r - depth) / |point - centre|
-// toward the axis.
+// The axial pressure a flat skin feels at distance e beyond the flat part of the face, towards an
+// end of the array, the skin `depth` [mm] inside the face's plane, from the geometry of an end
+// rounded with radius r (independent of probe_depth's signed distance): the end is a quarter
+// circle whose centre lies r inside the flat part's end and r behind the face's plane; a skin point
+// inside it is r - |point - centre| deep, and the circle's normal there leans
+// (r - depth) / |point - centre| toward the axis.
 double rim_pressure(const PenaltyLaw& law, double r, double depth, double e)
 {
     const double from_centre = std::hypot(e, r - depth);
@@ -31,7 +31,8 @@ double rim_pressure(const PenaltyLaw& law, double r, double depth, double e)
 TEST(ProbeContact, FlatSkinPressedEvenlyGivesPressureOverTheRoundedFace)
 {
     // the skin at y = 2.5, the face at y = 3 looking along +y (identity orientation): the skin
-    // under the face's flat 38 x 8 mm lies 0.5 mm inside it, and meets the 1 mm rounded rim
+    // under the face's flat 38 x 10 mm lies 0.5 mm inside it, and meets the array's 1 mm rounded
+    // ends; across the array the pressure fades over the last 1 mm to the long edges
     const double depth = 0.5, r = ProbeGeometry{}.edge_radius;
     const Eigen::VectorXd x = flat_patch(3.0 - depth, -100, -100, 200);
     const PatchSurface surface = make_patch_surface(2, 2, x, 0.1);
@@ -42,21 +43,18 @@ TEST(ProbeContact, FlatSkinPressedEvenlyGivesPressureOverTheRoundedFace)
     Eigen::VectorXd force = Eigen::VectorXd::Zero(12);
     const PenaltyLaw law;
     ASSERT_GT(collide(ProbeGeometry{}, law, probe, surface, x, Eigen::VectorXd::Zero(12), set, force), 0);
-    // the flat part, four bands along its edges and four quarter-disc corners (over which the
-    // pressure depends on the distance from the flat part's corner), by the midpoint rule
+    // across an end, the pressure over its rounded band by the midpoint rule; along the array, a
+    // fade from 1 to 0 over the last r of the thickness weighs a band by r / 2
     const double flat_w = 40.0 - 2 * r, flat_t = 10.0 - 2 * r;
-    double band = 0, corner = 0;
+    double band = 0;
     const int steps = 20000;
-    for (int i = 0; i < steps; ++i) {
-        const double e = (i + 0.5) * r / steps;
-        band += rim_pressure(law, r, depth, e) * r / steps;
-        corner += rim_pressure(law, r, depth, e) * (M_PI / 2) * e * r / steps;
-    }
-    const double expected = law.pressure(depth) * flat_w * flat_t + 2 * (flat_w + flat_t) * band + 4 * corner;
+    for (int i = 0; i < steps; ++i) band += rim_pressure(law, r, depth, (i + 0.5) * r / steps) * r / steps;
+    const double across = flat_t + 2 * (r / 2);  // the thickness, weighed by the fade
+    const double expected = law.pressure(depth) * flat_w * across + 2 * band * across;
     // sampled at 0.1 mm: within 1 %
     EXPECT_NEAR(set.total_force, expected, 0.01 * expected);
     // (what a sharp-edged face of the same size would feel is 10 % more)
-    EXPECT_GT(law.pressure(depth) * 400.0, 1.1 * expected);
+    EXPECT_GT(law.pressure(depth) * 400.0, 1.09 * expected);
     // along +y only, and the nodes together carry exactly what the probe feels
     double sum = 0;
     for (int k = 0; k < 4; ++k) {
@@ -67,9 +65,10 @@ TEST(ProbeContact, FlatSkinPressedEvenlyGivesPressureOverTheRoundedFace)
     EXPECT_NEAR(sum, set.total_force, 1e-9 * sum);
 }
 
-// The rounded box's depth against points placed by hand: under the face, over the rim (where the
-// normal leans out by the angle of the point about the rim's centre), on a side, outside.
-TEST(ProbeContact, ProbeDepthFollowsTheRoundedBox)
+// The probe's profile against points placed by hand: under the face (whatever z: the long edges
+// are not rounded), over a rounded end (where the normal leans out by the angle of the point about
+// the end's centre), beside an end, outside.
+TEST(ProbeContact, ProbeDepthFollowsTheRoundedEnds)
 {
     const ProbeGeometry g;  // 40 x 10 mm face, 1 mm rim
     const double hw = 20.0;
@@ -77,7 +76,8 @@ TEST(ProbeContact, ProbeDepthFollowsTheRoundedBox)
     EXPECT_NEAR(d.penetration, 0.4, 1e-12);
     EXPECT_NEAR(d.normal.y(), 1.0, 1e-12);
     EXPECT_EQ(d.turn, 0.0);
-    // over the rim: 0.6 mm from the rim's centre (19, -1, z) at 30 degrees from the axis
+    EXPECT_NEAR(probe_depth(g, {3.0, -0.4, 4.9}).penetration, 0.4, 1e-12);
+    // over an end: 0.6 mm from the end's centre (19, -1, z) at 30 degrees from the axis
     const double a = M_PI / 6, from_centre = 0.6;
     d = probe_depth(g, {hw - 1.0 + from_centre * std::sin(a), -1.0 + from_centre * std::cos(a), 0.0});
     EXPECT_NEAR(d.penetration, 0.4, 1e-12);
@@ -88,8 +88,8 @@ TEST(ProbeContact, ProbeDepthFollowsTheRoundedBox)
     d = probe_depth(g, {-hw + 0.3, -8.0, 0.0});
     EXPECT_NEAR(d.penetration, 0.3, 1e-12);
     EXPECT_NEAR(d.normal.x(), -1.0, 1e-12);
-    // outside the rounded corner, though inside the box
-    d = probe_depth(g, {hw - 0.1, -0.1, 4.9});
+    // outside the rounded end, though inside the box
+    d = probe_depth(g, {hw - 0.1, -0.1, 0.0});
     EXPECT_LT(d.penetration, 0.0);
     EXPECT_LT(probe_depth(g, {0.0, 0.5, 0.0}).penetration, 0.0);  // beyond the face
 }

@@ -54,10 +54,10 @@ Exam examine(Case which, double force_N)
     const session::SessionView& view = s.view();
     EchoFrame pressed = *view.echo;
     pressed.time_s = 0;  // diastole: the artery at its narrowest
-    // the skin's pressure at the exam's force, the settle's last window's mean: a deep press's
-    // contact ripples (settled.ripple_N), and the artery, at its onset at this force, would read
-    // the ripple's phase at the last step instead (0.2 or 0.9 % of lumen lost, as the build's
-    // rounding fell)
+    // the skin's pressure at the exam's force: the settle's last window's mean, what a force gauge
+    // reads (the artery is at its onset here, so a force that moved from step to step would move
+    // its reading: with the sharp rim of before, 0.2 or 0.9 % of lumen lost as a build's rounding
+    // fell)
     e.force_N = settled.force_N;
     pressed.skin_pressure_kpa = kLinearProbe.face_pressure_kpa(e.force_N);
     e.pressed = lumens(render_echo_cpu(v.grey, &v.labels, s.image_plane(), pressed, {}, s.patient(), true));
