@@ -88,6 +88,10 @@ TEST(ProbeContact, ProbeDepthFollowsTheRoundedEnds)
     d = probe_depth(g, {-hw + 0.3, -8.0, 0.0});
     EXPECT_NEAR(d.penetration, 0.3, 1e-12);
     EXPECT_NEAR(d.normal.x(), -1.0, 1e-12);
+    // under the flat of the face but deeper than it is from an end: the end is nearer
+    d = probe_depth(g, {-hw + 3.0, -5.0, 0.0});
+    EXPECT_NEAR(d.penetration, 3.0, 1e-12);
+    EXPECT_NEAR(d.normal.x(), -1.0, 1e-12);
     // outside the rounded end, though inside the box
     d = probe_depth(g, {hw - 0.1, -0.1, 0.0});
     EXPECT_LT(d.penetration, 0.0);
