@@ -121,7 +121,7 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
                 const Eigen::Vector3d p = wa * a + wb * b + wc * c;
                 if (p.y() >= 0.0 || p.y() < -g.body_depth || std::abs(p.x()) > hw || std::abs(p.z()) > ht) return;
                 const ProbeDepth depth = probe_depth(g, p);
-                if (depth.penetration <= 0.0) return;  // in the box, outside its rounded edge
+                if (depth.penetration <= 0.0) return;  // in the box, outside a rounded end
                 const double facing = depth.normal.y();  // of the surface there, toward the tissue
                 if (facing <= 0.0) return;  // an end's: pushing along the axis it does not
                 // across the array, the pressure fades over the last edge_radius of the thickness

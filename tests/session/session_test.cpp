@@ -127,9 +127,9 @@ TEST(Session, APressSettlesBeforeItsForceIsReported)
     EXPECT_NEAR(r.force_N, longer.view().probe_force_N, 0.02 * r.force_N);
 }
 
-// Pressed deep, the skin wraps the face's rim; it settles there, and the force is steady from step
-// to step. (With a sharp rim whose pressure faded over 1 mm it chattered: +-16 % at 16 mm, +-28 %
-// at 20 mm, and the tissue never slept under the probe.) The patch also lies still enough to sleep.
+// Pressed deep, the skin wraps the ends of the probe's array; it settles there, and the force is
+// steady from step to step. (With sharp ends whose pressure faded over 1 mm it chattered: +-16 % at
+// 16 mm, +-28 % at 20 mm, and the tissue never slept under the probe.)
 TEST(Session, ADeepPressHoldsASteadyForce)
 {
     for (double press : {16.0, 20.0}) {
