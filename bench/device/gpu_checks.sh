@@ -14,7 +14,8 @@ tar -C "$g" -xJf .gpu/echosim-gpu.tar.xz || exit 1
 export LD_LIBRARY_PATH=$g/lib VK_LAYER_PATH=$g/layers XDG_CACHE_HOME=$g/cache ECHOSIM_ASSETS=$PWD/assets
 if ldd $g/bin/echosim | grep -q 'not found'; then export LD_LIBRARY_PATH=$LD_LIBRARY_PATH:$g/lib-std; fi
 ldd $g/bin/echosim | grep 'not found'
-for icd in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json; do
+for icd in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+           /etc/vulkan/icd.d/nvidia_icd.json; do
     [ -f "$icd" ] && { export VK_DRIVER_FILES=$icd; break; }
 done
 echo "ICD: ${VK_DRIVER_FILES:-none found}"
@@ -31,10 +32,13 @@ step() { echo "== $*"; }
 step "render headless on the GPU"
 VK_LOADER_DEBUG=error,warn timeout 120 $g/bin/echosim render --gpu $gpu --out "$out/render_gpu.png" 2>&1 | tail -3
 step "kernels vs CPU twins"
-ECHOSIM_TEST_GPU=$gpu timeout 240 $g/bin/echosim_tests \
-    --gtest_filter='EchoImageGpu.*:Compute.*:Context.*:FramePasses.*:LogCompress*:ImagePanel.*:-*Reference*:Context.StartsOnLavapipe*:Context.UnknownGpuName*' 2>&1 | tee "$out/tests_gpu.log" | grep -E '^\[  (FAILED|PASSED) |validation|^\[==' 
+tests='EchoImageGpu.*:Compute.*:Context.*:FramePasses.*:LogCompress*:ImagePanel.*'
+lavapipe_only='*Reference*:Context.StartsOnLavapipe*:Context.UnknownGpuName*'
+ECHOSIM_TEST_GPU=$gpu timeout 240 $g/bin/echosim_tests --gtest_filter="$tests:-$lavapipe_only" 2>&1 |
+    tee "$out/tests_gpu.log" | grep -E '^\[  (FAILED|PASSED) |validation|^\[=='
 step "bench slice"
-timeout 240 $g/bin/echosim bench slice --gpu $gpu --repetitions 3 $bench_args --json "$out/slice_gpu.json" 2>&1 | tee "$out/bench.log" | grep -E '^\| |no .* rows'
+timeout 240 $g/bin/echosim bench slice --gpu $gpu --repetitions 3 $bench_args --json "$out/slice_gpu.json" 2>&1 |
+    tee "$out/bench.log" | grep -E '^\| |no .* rows'
 step "slice images"
 for how in "--gpu $gpu" --cpu; do
     name=$( [ "$how" = --cpu ] && echo twin || echo gpu )
