@@ -3,7 +3,8 @@
 // and 0.1 mm voxels (bench/slice_scene.hpp), on lavapipe, on the CPU twin, and on a GPU when one is
 // present. A GPU frame is recorded, submitted and waited for, with nothing read back: what a live
 // frame costs. The "slice-only" rows time the slice kernel alone (the pressed frame's warped
-// sampling), so the rest of the frame's cost is deform and post.
+// sampling), the "deform-only" rows the deform stage's two dispatches alone, so the rest of the
+// frame's cost is post and the copy into the displayed image.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -92,7 +93,8 @@ void frames_gpu(benchmark::State& state, SliceFixture& f, GpuBackend& b, std::ui
     one(image::Stages::all);
     one(stages);
     for (auto _ : state) one(stages);
-    report(state, side, which, b.name, stages == image::Stages::all ? "all" : "slice-only");
+    const char* name = stages == image::Stages::all ? "all" : stages == image::Stages::slice_only ? "slice-only" : "deform-only";
+    report(state, side, which, b.name, name);
 }
 
 void frames_cpu(benchmark::State& state, SliceFixture& f, std::uint32_t side, int which)
@@ -153,6 +155,12 @@ std::shared_ptr<void> register_slice(const SuiteOptions& options)
             if (b)
                 add(std::string("slice-only/") + b->name + "/1024x1024/" + kVoxelNames[which],
                     [f, b, which](benchmark::State& s) { frames_gpu(s, *f, *b, 1024, which, image::Stages::slice_only); }, options.min_time_s);
+    for (int which : {0, 1})
+        for (GpuBackend* b : {f->lavapipe.get(), f->gpu.get()})
+            if (b)
+                add(std::string("deform-only/") + b->name + "/1024x1024/" + kVoxelNames[which],
+                    [f, b, which](benchmark::State& s) { frames_gpu(s, *f, *b, 1024, which, image::Stages::deform_only); },
+                    options.min_time_s);
     return fixture;
 }
 

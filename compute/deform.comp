@@ -6,6 +6,9 @@
 // down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp), in two
 // dispatches: every column solved on its own (DEFORM_SOLVE), then mapped with its neighbours (DEFORM_MAP).
 layout(local_size_x = DEFORM_GROUP_SIZE) in;
+// which pass this pipeline runs: a constant, so each pass's pipeline holds its own code only, and
+// the map pass reads what the solve pass wrote through the texel views
+layout(constant_id = 0) const uint PASS = DEFORM_SOLVE;
 layout(binding = DEFORM_LABELS_BINDING) uniform usampler3D labels;
 layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 profile[]; };
 layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
@@ -13,6 +16,9 @@ layout(std430, binding = DEFORM_SCRATCH_BINDING) buffer Scratch { uvec2 scratch[
 layout(std430, binding = DEFORM_MAP_BINDING) writeonly buffer Map { vec2 map[]; };
 layout(std430, binding = DEFORM_MOVED_BINDING) buffer Moved { float moved[]; };
 layout(std430, binding = DEFORM_WALLS_BINDING) buffer Walls { uint walls[]; };
+layout(binding = DEFORM_SCRATCH_TEXELS_BINDING) uniform usamplerBuffer scratch_texels;
+layout(binding = DEFORM_MOVED_TEXELS_BINDING) uniform samplerBuffer moved_texels;
+layout(binding = DEFORM_WALLS_TEXELS_BINDING) uniform usamplerBuffer walls_texels;
 layout(push_constant) uniform Push { DeformParams params; };
 
 uint deform_label(vec3 index)
@@ -28,13 +34,25 @@ vec2 deform_profile(uint column) { return profile[column]; }
 // step-major: the invocations of a group (neighbouring columns) walk down side by side, so their
 // entries of a step share cache lines; column-major put them max_steps entries apart, a line
 // (and on a CPU device a gather's lane) each
-vec4 scratch_load(uint column, uint step) { return scratch_unpack(scratch[step * params.columns + column]); }
+vec4 scratch_load(uint column, uint step)
+{
+    uint i = step * params.columns + column;
+    return scratch_unpack(PASS == DEFORM_MAP ? texelFetch(scratch_texels, int(i)).xy : scratch[i]);
+}
 void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = scratch_pack(v); }
 void map_store(uint pixel, vec2 v) { map[pixel] = v; }
 // step-major too: a boundary's neighbours, which deform_spread reads, lie side by side
-float moved_load(uint column, uint boundary) { return moved[boundary * params.columns + column]; }
+float moved_load(uint column, uint boundary)
+{
+    uint i = boundary * params.columns + column;
+    return PASS == DEFORM_MAP ? texelFetch(moved_texels, int(i)).r : moved[i];
+}
 void moved_store(uint column, uint boundary, float v) { moved[boundary * params.columns + column] = v; }
-vec2 walls_load(uint column, uint boundary) { return unpackHalf2x16(walls[boundary * params.columns + column]); }
+vec2 walls_load(uint column, uint boundary)
+{
+    uint i = boundary * params.columns + column;
+    return unpackHalf2x16(PASS == DEFORM_MAP ? texelFetch(walls_texels, int(i)).r : walls[i]);
+}
 void walls_store(uint column, uint boundary, vec2 v) { walls[boundary * params.columns + column] = packHalf2x16(v); }
 
 #include "deform_column.h"
@@ -43,6 +61,6 @@ void main()
 {
     uint c = gl_GlobalInvocationID.x;
     if (c >= params.columns) return;
-    if (params.pass == DEFORM_SOLVE) deform_column_solve(c, params);
+    if (PASS == DEFORM_SOLVE) deform_column_solve(c, params);
     else deform_column_map(c, params);
 }

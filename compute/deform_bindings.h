@@ -51,6 +51,14 @@ namespace echosim::kernels {
 #define DEFORM_MAP_BINDING 4      // vec2 per pixel: (source y [mm], gain [dB])
 #define DEFORM_MOVED_BINDING 5    // float per column per step boundary (max_steps + 1): how far it moved [mm]
 #define DEFORM_WALLS_BINDING 6    // uint per column per step boundary: its distances to what fixes it [mm], two half floats
+// The same three buffers as texel buffers (R32G32_UINT, R32_SFLOAT, R32_UINT), which the map pass
+// reads them through: the solve pass's dispatch wrote them, so a plain read-only view sees them. A
+// CPU device fetches a texel for all its lanes at once, where a storage buffer's load is a loop over
+// the lanes with a branch each (llvmpipe); the map pass's sideways spread makes some twenty loads a
+// step boundary.
+#define DEFORM_SCRATCH_TEXELS_BINDING 7
+#define DEFORM_MOVED_TEXELS_BINDING 8
+#define DEFORM_WALLS_TEXELS_BINDING 9
 #define DEFORM_TISSUE_CODES 16
 
 // how far from a closing lumen the tissue sinking and rising into it stretches (halving distance
@@ -64,6 +72,7 @@ namespace echosim::kernels {
 #define DEFORM_SPREAD_MAX_MM 3.0f
 #define DEFORM_MEETING 0.5f
 
+// The two passes, each a dispatch of its own pipeline (the kernel's specialization constant 0):
 #define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)
 #define DEFORM_MAP 1u    // then the map, from the columns and their neighbours (deform_column_map)
 
@@ -98,7 +107,6 @@ struct DeformParams {
     float tgc_db_cm_mhz;     // the attenuation the time-gain compensation assumes [dB/cm/MHz]
     float frequency_mhz;
     uint flags;              // DEFORM_PAPER_LINEAR
-    uint pass;               // DEFORM_SOLVE or DEFORM_MAP: which of the two passes a dispatch runs
 };
 
 // A walk step's scratch entry as it is kept between the walks: four half floats in two words. A SIMD

@@ -41,23 +41,31 @@ float solid_strain_after(vec4 w, float stress, vec4 solved, uint stage)
 // sigma, room_k) = |amount|, g_k the step's weight (compliance, or share), room_k what its largest
 // strain leaves after the stages before. From sigma = 0, each pass solves the linear law with the
 // steps the last sigma filled held full; sigma only grows towards the answer, and reaches it once
-// the filled set stops changing.
+// the filled set stops changing. A pass also finds the lowest level at which a step it left free
+// would fill: a new sigma below it fills none, so the set cannot change and no pass is needed to
+// see that (each pass is a walk over the column: the common case, where no step fills, takes one).
 float remainder_level(uint c, uint steps, float h, float stress, float amount, vec4 solved, uint stage)
 {
     float dir = sign(amount), sigma = 0.0f;
     for (int pass = 0; pass < 16; ++pass) {
-        float free_sum = 0.0f, full = 0.0f;
+        float free_sum = 0.0f, full = 0.0f, fills_at = 3.0e38f;
         for (uint k = 0u; k < steps; ++k) {
             vec4 w = scratch_load(c, k);
             if (is_lumen(w)) continue;
             float g = stage == 0u ? w.x : w.w, room = w.y - dir * solid_strain_after(w, stress, solved, stage);
-            if (g * sigma >= room) full += room * h;
-            else free_sum += g * h;
+            if (g * sigma >= room) {
+                full += room * h;
+            } else {
+                free_sum += g * h;
+                if (g > 0.0f) fills_at = min(fills_at, room / g);
+            }
         }
         if (free_sum <= 0.0f) break;  // every step rigid or full: the column cannot take more
         float next = (abs(amount) - full) / free_sum;
         if (next <= sigma) break;
         sigma = next;
+        // within a part in 10^5 of filling counts as filling: the next pass decides it exactly
+        if (next < fills_at * 0.99999f) break;
     }
     return sigma;
 }

@@ -125,8 +125,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                 deform_max_steps(grid, plane),
                 float(ScanSpec{}.tgc_db_per_cm_mhz),  // the time-gain compensation the volume was made with
                 float(kLinearProbe.frequency_mhz),
-                labelled ? 0u : DEFORM_PAPER_LINEAR,
-                DEFORM_SOLVE};
+                labelled ? 0u : DEFORM_PAPER_LINEAR};
     k.slice = {probe_to_index,
                plane.columns,
                plane.rows,

@@ -258,7 +258,8 @@ std::uint32_t texel_bytes(VkFormat format)
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_B8G8R8A8_UNORM:
     case VK_FORMAT_B8G8R8A8_SRGB: return 4;
-    case VK_FORMAT_R32G32_SFLOAT: return 8;
+    case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R32G32_UINT: return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
     default: throw std::invalid_argument("texel size of Vulkan format " + std::to_string(int(format)) + " is not known to echosim");
     }

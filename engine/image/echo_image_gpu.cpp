@@ -123,7 +123,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
       deform_(ctx, kernels::deform_comp, "deform.comp",
               {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
                gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
-               gpu::BindingKind::storage_buffer},
+               gpu::BindingKind::storage_buffer, gpu::BindingKind::texel_buffer, gpu::BindingKind::texel_buffer,
+               gpu::BindingKind::texel_buffer},
               sizeof(kernels::DeformParams)),
       slice_(ctx, kernels::slice_comp, "slice.comp",
              {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::texel_buffer,
@@ -132,7 +133,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
              0)
 {
     static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
-                      DEFORM_MAP_BINDING == 4 && DEFORM_MOVED_BINDING == 5 && DEFORM_WALLS_BINDING == 6,
+                      DEFORM_MAP_BINDING == 4 && DEFORM_MOVED_BINDING == 5 && DEFORM_WALLS_BINDING == 6 &&
+                      DEFORM_SCRATCH_TEXELS_BINDING == 7 && DEFORM_MOVED_TEXELS_BINDING == 8 && DEFORM_WALLS_TEXELS_BINDING == 9,
                   "deform bindings in the order declared above");
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
                       SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7,
@@ -141,6 +143,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     const std::uint32_t live = SLICE_POST | (volume_->packed() ? SLICE_PACKED : 0u);
     slice_.prepare(live);
     slice_.prepare(live | SLICE_WARPED);
+    deform_.prepare(DEFORM_SOLVE);
+    deform_.prepare(DEFORM_MAP);
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
@@ -158,10 +162,16 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                                 gpu::MemoryUse::host_visible);
         slot.row_texels = gpu::TexelView(ctx, slot.rows, VK_FORMAT_R32G32B32A32_SFLOAT, "the image rows' post parameters");
         slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
-        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * sizeof(kernels::uvec2), storage, gpu::MemoryUse::device_local);
+        // written as storage buffers by the deform's solve pass, read as texel buffers by its map pass
+        constexpr auto storage_and_texels = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * sizeof(kernels::uvec2), storage_and_texels,
+                                   gpu::MemoryUse::device_local);
         const VkDeviceSize boundaries = VkDeviceSize(map_columns_) * (max_steps_ + 1);
-        slot.moved = gpu::Buffer(ctx, boundaries * sizeof(float), storage, gpu::MemoryUse::device_local);
-        slot.walls = gpu::Buffer(ctx, boundaries * sizeof(std::uint32_t), storage, gpu::MemoryUse::device_local);
+        slot.moved = gpu::Buffer(ctx, boundaries * sizeof(float), storage_and_texels, gpu::MemoryUse::device_local);
+        slot.walls = gpu::Buffer(ctx, boundaries * sizeof(std::uint32_t), storage_and_texels, gpu::MemoryUse::device_local);
+        slot.scratch_texels = gpu::TexelView(ctx, slot.scratch, VK_FORMAT_R32G32_UINT, "the deform stage's scratch");
+        slot.moved_texels = gpu::TexelView(ctx, slot.moved, VK_FORMAT_R32_SFLOAT, "the deform stage's displacements");
+        slot.walls_texels = gpu::TexelView(ctx, slot.walls, VK_FORMAT_R32_UINT, "the deform stage's wall distances");
         slot.map = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * plane_.rows * 2 * sizeof(float),
                                storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.map_texels = gpu::TexelView(ctx, slot.map, VK_FORMAT_R32G32_SFLOAT, "the deform map");
@@ -173,7 +183,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                                 {VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_ONE});
         deform_.bind(s, {gpu::Binding::sampled(volume_->labels(), volume_->nearest()), gpu::Binding::storage(slot.profile),
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map),
-                         gpu::Binding::storage(slot.moved), gpu::Binding::storage(slot.walls)});
+                         gpu::Binding::storage(slot.moved), gpu::Binding::storage(slot.walls), gpu::Binding::texel(slot.scratch_texels),
+                         gpu::Binding::texel(slot.moved_texels), gpu::Binding::texel(slot.walls_texels)});
         slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
                         gpu::Binding::texel(slot.map_texels), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
                         gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params), gpu::Binding::texel(slot.row_texels)});
@@ -206,19 +217,18 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     auto* rows = static_cast<kernels::PostRow*>(slot.rows.mapped());
     for (std::uint32_t r = 0; r < plane_.rows; ++r) rows[r] = kernels::post_row(r, k.post);
 
-    if (warped && all) {
+    if (warped && stages != Stages::slice_only) {
         slot.profile.write(std::as_bytes(std::span(profiles)));
         // the columns solved, then mapped with their neighbours' solutions
         const gpu::Groups columns = gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE);
-        k.deform.pass = DEFORM_SOLVE;
-        deform_.record(cmd, slot_index, bytes_of(k.deform), columns);
+        deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_SOLVE);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-        k.deform.pass = DEFORM_MAP;
-        deform_.record(cmd, slot_index, bytes_of(k.deform), columns);
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
+    if (stages == Stages::deform_only) return;
     slice_.record(cmd, slot_index, {},
                   gpu::Groups::cover(VkExtent2D{kernels::slice_words(plane_.columns), plane_.rows}, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}),
                   k.slice.flags);

@@ -75,11 +75,12 @@ private:
     gpu::Sampler linear_, nearest_;
 };
 
-// Which of the frame's stages record() records: all (a live frame), or the slice alone (the
-// benchmark's split of the frame's cost: the slice kernel without the post stage and without the
-// copy into the displayed image; a pressed frame's slice then reads the slot's deform map as the
-// slot's last full frame left it, and the displayed image is not written).
-enum class Stages { all, slice_only };
+// Which of the frame's stages record() records: all (a live frame), the slice alone, or the deform
+// stage alone (the benchmark's split of the frame's cost: the slice kernel without the post stage
+// and without the copy into the displayed image, a pressed frame's slice then reading the slot's
+// deform map as the slot's last full frame left it; or the deform stage's dispatches, which write
+// that map and nothing else). Only `all` writes the displayed image.
+enum class Stages { all, slice_only, deform_only };
 
 class EchoImageGpu {
 public:
@@ -92,7 +93,7 @@ public:
     // Records the frame's three stages into `cmd` for frame slot `slot`, leaving the slot's image in
     // `final_layout` (SHADER_READ_ONLY_OPTIMAL for the panel, visible to fragment shaders; or
     // TRANSFER_SRC_OPTIMAL for a read-back). `want_labels`: also fill the slot's label buffer.
-    // `stages`: see Stages (with slice_only, `final_layout` is not used).
+    // `stages`: see Stages (`final_layout` is used by `all` only).
     // Throws std::invalid_argument when the frame's profile does not match the plane.
     void record(VkCommandBuffer cmd, int slot, const echo::EchoFrame& frame, VkImageLayout final_layout, bool want_labels = false,
                 Stages stages = Stages::all);
@@ -120,6 +121,7 @@ private:
         gpu::TexelView row_texels;  // rows, as the slice kernel reads them
         gpu::Buffer scratch, moved, walls, map, grey, labels;
         gpu::TexelView map_texels;  // the map as the slice kernel reads it
+        gpu::TexelView scratch_texels, moved_texels, walls_texels;  // as the deform's map pass reads them
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
         gpu::Buffer readback;  // host-visible, with enable_readback()
