@@ -2,6 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "slice_bindings.h"
+#if SLICE_RUN_WORDS != 2
+#error "a run's words are stored as one uvec2"
+#endif
 
 // The slice stage, with the post stage on each sample (slice_bindings.h): one invocation per
 // SLICE_RUN pixels of a row. The grey volume is sampled trilinearly: through a linear sampler (the
@@ -17,15 +20,15 @@ layout(binding = SLICE_LABELS_BINDING) uniform usampler3D labels;
 layout(binding = SLICE_MAP_BINDING) uniform samplerBuffer map;
 layout(std430, binding = SLICE_GREY_BINDING) writeonly buffer Grey { float grey_out[]; };
 layout(std430, binding = SLICE_LABEL_OUT_BINDING) writeonly buffer LabelOut { uint label_out[]; };
-layout(std430, binding = SLICE_DISPLAY_BINDING) writeonly buffer Display { uint display[]; };
+layout(std430, binding = SLICE_DISPLAY_BINDING) writeonly buffer Display { uvec2 display[]; };
 layout(std140, binding = SLICE_FRAME_BINDING) uniform Frame { SliceFrame frame; };
 layout(binding = SLICE_ROWS_BINDING) uniform samplerBuffer post_rows;
 
 void main()
 {
-    uint word = gl_GlobalInvocationID.x, r = gl_GlobalInvocationID.y;
+    uint run = gl_GlobalInvocationID.x, r = gl_GlobalInvocationID.y;
     SliceParams s = frame.slice;
-    uint c0 = word * uint(SLICE_RUN);
+    uint c0 = run * uint(SLICE_RUN);
     if (c0 >= s.columns || r >= s.rows) return;
     const bool warped = (FLAGS & SLICE_WARPED) != 0u, post = (FLAGS & SLICE_POST) != 0u;
     uvec3 voxels = uvec3(s.volume_x, s.volume_y, s.volume_z);
@@ -44,8 +47,8 @@ void main()
         int row_start = int(r * s.map_columns), last = int(s.map_columns) - 1;
         [[unroll]] for (int k = 0; k <= SLICE_RUN; ++k) taps[k] = texelFetch(map, row_start + min(int(first) + k, last)).xy;
     }
-    uint packed = 0u;
-    // a row's last word may reach past its last column: those bytes repeat that column (the copy
+    uvec2 packed = uvec2(0u);
+    // a row's last run may reach past its last column: those bytes repeat that column (the copy
     // into the image leaves them), so every lane runs the same code
     [[unroll]] for (uint j = 0u; j < uint(SLICE_RUN); ++j) {
         uint c = min(c0 + j, s.columns - 1u);
@@ -79,7 +82,7 @@ void main()
             label_out[i] = in_map ? texelFetch(labels, v, 0).r : 0u;
         }
         uint shown = post ? post_pixel(c, grey, m.y, row, frame.post) : uint(grey + 0.5);
-        packed |= min(shown, 255u) << (8u * j);
+        packed[j / 4u] |= min(shown, 255u) << (8u * (j % 4u));
     }
-    display[r * slice_words(s.columns) + word] = packed;
+    display[r * slice_runs(s.columns) + run] = packed;
 }

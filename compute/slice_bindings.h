@@ -16,7 +16,12 @@
 namespace echosim::kernels {
 #endif
 
-#define SLICE_RUN 4  // pixels of a row one invocation takes: one word of the displayed image
+// The pixels of a row one invocation takes, and the words of the displayed image they fill: stored
+// at once, as llvmpipe makes of every storage-buffer store a loop over the SIMD lanes (the words, a
+// vector's components, within one loop). 8 pixels (two words) ran the slice alone 12-38 % faster than
+// 4 (one word) in alternated runs; 16 no faster than 8 (bench/RESULTS.md).
+#define SLICE_RUN 8
+#define SLICE_RUN_WORDS (SLICE_RUN / 4)
 #define SLICE_GROUP_X 16  // invocations, each SLICE_RUN columns
 #define SLICE_GROUP_Y 8
 #define SLICE_VOLUME_BINDING 0  // sampler3D, linear: grey levels (UNORM8)
@@ -24,7 +29,7 @@ namespace echosim::kernels {
 #define SLICE_MAP_BINDING 2     // texel buffer, RG32F: the deform map, map_columns x rows (read when SLICE_WARPED)
 #define SLICE_GREY_BINDING 3    // float per pixel: grey level 0..255, 0 outside the volume (written when SLICE_GREY)
 #define SLICE_LABEL_OUT_BINDING 4  // uint per pixel: tissue code (written when SLICE_LABELS)
-#define SLICE_DISPLAY_BINDING 5    // uint per SLICE_RUN pixels: displayed grey bytes, first pixel lowest; slice_words(columns) a row
+#define SLICE_DISPLAY_BINDING 5    // uvec2 per run: displayed grey bytes, first pixel lowest; slice_words(columns) words a row
 #define SLICE_FRAME_BINDING 6      // uniform: SliceFrame
 #define SLICE_ROWS_BINDING 7       // texel buffer, RGBA32F: post_row(r) of each row (post_bindings.h), made by the host
 
@@ -131,8 +136,9 @@ KERNEL_FN vec2 map_between(vec2 left, vec2 right, float right_weight)
     return mix(left, right, right_weight);
 }
 
-// The words a row of the displayed image takes.
-KERNEL_FN uint slice_words(uint columns) { return (columns + uint(SLICE_RUN) - 1u) / uint(SLICE_RUN); }
+// The runs, and the words, a row of the displayed image takes.
+KERNEL_FN uint slice_runs(uint columns) { return (columns + uint(SLICE_RUN) - 1u) / uint(SLICE_RUN); }
+KERNEL_FN uint slice_words(uint columns) { return slice_runs(columns) * uint(SLICE_RUN_WORDS); }
 
 // Whether a continuous voxel index lies where trilinear sampling has all eight neighbours (the CPU
 // reference's rule: outside, the image is black).

@@ -230,7 +230,7 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     }
     if (stages == Stages::deform_only) return;
     slice_.record(cmd, slot_index, {},
-                  gpu::Groups::cover(VkExtent2D{kernels::slice_words(plane_.columns), plane_.rows}, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}),
+                  gpu::Groups::cover(VkExtent2D{kernels::slice_runs(plane_.columns), plane_.rows}, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}),
                   k.slice.flags);
     if (!all) return;
 
@@ -240,7 +240,7 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkBufferImageCopy from_words{};
-    from_words.bufferRowLength = kernels::slice_words(plane_.columns) * SLICE_RUN;
+    from_words.bufferRowLength = kernels::slice_words(plane_.columns) * 4;  // bytes: R8 texels
     from_words.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     from_words.imageExtent = {plane_.columns, plane_.rows, 1};
     vkCmdCopyBufferToImage(cmd, slot.display.handle(), slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &from_words);
