@@ -229,9 +229,8 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
     if (stages == Stages::deform_only) return;
-    slice_.record(cmd, slot_index, {},
-                  gpu::Groups::cover(VkExtent2D{kernels::slice_runs(plane_.columns), plane_.rows}, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}),
-                  k.slice.flags);
+    const VkExtent2D runs{kernels::slice_runs(plane_.columns), plane_.rows};
+    slice_.record(cmd, slot_index, {}, gpu::Groups::cover(runs, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}), k.slice.flags);
     if (!all) return;
 
     // the packed bytes into the displayed image (its last contents are not needed)
