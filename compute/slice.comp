@@ -37,15 +37,16 @@ void main()
     vec4 row_texel = texelFetch(post_rows, int(r));
     PostRow row = PostRow(row_texel.x, row_texel.y, row_texel.z, row_texel.w);
     float y = pixel_y(r, s.pixel_y_mm);
-    // the map columns the run reads (map_tap): fetched once for its pixels, a fetch being the cost
-    // that counts on a CPU device, and picked per pixel by selects (a computed index into an
-    // array would go through memory there)
+    // the map columns the run reads (map_tap, slice_taps): fetched once for its pixels, a fetch
+    // being the cost that counts on a CPU device, and picked per pixel by selects (a computed index
+    // into an array would go through memory there)
+    const uint TAPS = (FLAGS >> SLICE_TAPS_SHIFT) & 15u;
     uint first = 0u;
     vec2 taps[SLICE_RUN + 1];
     if (warped) {
         first = map_tap(c0, s).left;
         int row_start = int(r * s.map_columns), last = int(s.map_columns) - 1;
-        [[unroll]] for (int k = 0; k <= SLICE_RUN; ++k) taps[k] = texelFetch(map, row_start + min(int(first) + k, last)).xy;
+        [[unroll]] for (uint k = 0u; k < TAPS; ++k) taps[k] = texelFetch(map, row_start + min(int(first + k), last)).xy;
     }
     uvec2 packed = uvec2(0u);
     // a row's last run may reach past its last column: those bytes repeat that column (the copy
@@ -57,7 +58,7 @@ void main()
         if (warped) {
             MapTap t = map_tap(c, s);
             vec2 left = taps[0], right = taps[0];
-            [[unroll]] for (uint k = 1u; k <= uint(SLICE_RUN); ++k) {
+            [[unroll]] for (uint k = 1u; k < TAPS; ++k) {
                 left = t.left == first + k ? taps[k] : left;
                 right = t.right == first + k ? taps[k] : right;
             }

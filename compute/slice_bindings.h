@@ -38,6 +38,7 @@ namespace echosim::kernels {
 #define SLICE_GREY 4u    // also write the sliced grey levels
 #define SLICE_POST 8u    // the displayed bytes go through the post stage (else: the sliced grey, rounded)
 #define SLICE_PACKED 16u // the volume is RGBA8 texels of 2 x 2 neighbours in (y, z) (below); else R8 through the trilinear sampler
+#define SLICE_TAPS_SHIFT 8u  // with SLICE_WARPED: the map columns a run reads, slice_taps (4 bits from here)
 
 struct SliceParams {
     mat4 probe_to_index;  // pressed probe frame [mm] -> volume voxel index (the labels share its grid)
@@ -123,6 +124,16 @@ KERNEL_FN MapTap map_tap(uint c, SliceParams p)
     t.right = min(t.left + 1u, p.map_columns - 1u);
     t.right_weight = u - float(t.left);
     return t;
+}
+
+// The map columns a run reads at most: its pixels' left columns lie at most ceil((SLICE_RUN - 1)
+// map_step) apart (map_tap), and the last one's right column is one further. A warped pipeline is
+// made for this many (its flags' SLICE_TAPS_SHIFT bits), so its runs fetch and pick among no more
+// than they need: 3 for a 1024-column image over 134 map columns, SLICE_RUN + 1 when the map is as
+// fine as the image (the margin keeps a float rounding of the product from costing a column).
+KERNEL_FN uint slice_taps(float map_step)
+{
+    return min(uint(SLICE_RUN) + 1u, uint(ceil(float(SLICE_RUN - 1) * map_step + 1e-3f)) + 2u);
 }
 
 // The deform map between two of its columns (map_tap's), lerped; but where the two columns' sources

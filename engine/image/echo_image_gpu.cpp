@@ -142,7 +142,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     // the live frames' variants, pressed and not, made now rather than at the first frame of each
     const std::uint32_t live = SLICE_POST | (volume_->packed() ? SLICE_PACKED : 0u);
     slice_.prepare(live);
-    slice_.prepare(live | SLICE_WARPED);
+    slice_.prepare(live | SLICE_WARPED | kernels::slice_taps(echo::map_step(volume_->grid(), plane_)) << SLICE_TAPS_SHIFT);
     deform_.prepare(DEFORM_SOLVE);
     deform_.prepare(DEFORM_MAP);
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
