@@ -7,6 +7,7 @@
 // devices) at 99.9 %, and the displayed grey within 3 levels at 99.5 %; labels equal at 99.9 %.
 #include "image/echo_image_gpu.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -149,6 +150,34 @@ TEST(EchoImageGpu, APackedVolumeWiderThanAnImageRowSlicesAsItsCpuTwin)
     EXPECT_GT(double(inside), 0.95 * double(cpu.grey.size())) << "the plane lies in the volume";
     EXPECT_EQ(apart, 0u) << "pixels more than a grey level from the CPU twin's";
     EXPECT_EQ(ctx.validation_counter()->load(), 0u);
+}
+
+// A warped slice pipeline fetches slice_taps(map_step) map columns a run, from its first pixel's
+// left one: every pixel of every run must find both its columns among them (a pixel that does not
+// would take the run's first column's source), for images as fine as their map and far finer, of
+// widths that leave a part run; and the live image reads no more than it needs.
+TEST(EchoImageGpu, EveryPixelOfARunFindsItsMapColumnsAmongTheRunsTaps)
+{
+    using namespace kernels;
+    for (const std::uint32_t columns : {7u, 100u, 333u, 400u, 401u, 512u, 1024u, 2048u})
+        for (const std::uint32_t map_columns : {1u, 2u, 67u, 100u, 133u, 134u, 400u, 2048u}) {
+            if (map_columns > columns) continue;
+            SliceParams p{};
+            p.map_columns = map_columns;
+            p.map_step = float(double(map_columns) / double(columns));  // as echo::map_step makes it
+            const uint taps = slice_taps(p.map_step);
+            ASSERT_LE(taps, uint(SLICE_RUN) + 1u);
+            for (uint run = 0; run < slice_runs(columns); ++run) {
+                const uint c0 = run * uint(SLICE_RUN), first = map_tap(c0, p).left;
+                for (uint j = 0; j < uint(SLICE_RUN); ++j) {
+                    const MapTap t = map_tap(std::min(c0 + j, columns - 1), p);
+                    ASSERT_GE(t.left, first);
+                    ASSERT_LT(t.right - first, taps) << columns << " columns over " << map_columns << ", run " << run << ", pixel " << j;
+                }
+            }
+        }
+    EXPECT_EQ(slice_taps(float(134.0 / 1024.0)), 3u);  // the live 1024-column image over 0.3 mm labels
+    EXPECT_EQ(slice_taps(1.0f), uint(SLICE_RUN) + 1u);
 }
 
 TEST(EchoImageGpu, RefusesVolumesItCannotRead)
