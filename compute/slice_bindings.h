@@ -18,8 +18,8 @@ namespace echosim::kernels {
 
 // The pixels of a row one invocation takes, and the words of the displayed image they fill: stored
 // at once, as llvmpipe makes of every storage-buffer store a loop over the SIMD lanes (the words, a
-// vector's components, within one loop). 8 pixels (two words) ran the slice alone 12-38 % faster than
-// 4 (one word) in alternated runs; 16 no faster than 8 (bench/RESULTS.md).
+// vector's components, within one loop). 8 pixels (two words) ran the slice alone faster than 4 (one
+// word) in 12 of 13 alternated pairs of runs, by up to 38 %; 16 no faster than 8 (bench/RESULTS.md).
 #define SLICE_RUN 8
 #define SLICE_RUN_WORDS (SLICE_RUN / 4)
 #define SLICE_GROUP_X 16  // invocations, each SLICE_RUN columns
