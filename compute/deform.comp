@@ -31,29 +31,30 @@ uint deform_label(vec3 index)
 }
 TissueMechanics deform_tissue(uint code) { return tissues[code]; }
 vec2 deform_profile(uint column) { return profile[column]; }
-// step-major: the invocations of a group (neighbouring columns) walk down side by side, so their
-// entries of a step share cache lines; column-major put them max_steps entries apart, a line
-// (and on a CPU device a gather's lane) each
+// The scratch, the displacements and the wall distances are step-major: the invocations of a group
+// (neighbouring columns) walk down side by side, so their entries of a step share cache lines
+// (column-major put them max_steps entries apart, a line, and on a CPU device a gather's lane,
+// each), and a boundary's neighbours, which deform_spread reads, lie side by side.
+uint step_major(uint column, uint step) { return step * params.columns + column; }
 vec4 scratch_load(uint column, uint step)
 {
-    uint i = step * params.columns + column;
+    uint i = step_major(column, step);
     return scratch_unpack(PASS == DEFORM_MAP ? texelFetch(scratch_texels, int(i)).xy : scratch[i]);
 }
-void scratch_store(uint column, uint step, vec4 v) { scratch[step * params.columns + column] = scratch_pack(v); }
+void scratch_store(uint column, uint step, vec4 v) { scratch[step_major(column, step)] = scratch_pack(v); }
 void map_store(uint pixel, vec2 v) { map[pixel] = v; }
-// step-major too: a boundary's neighbours, which deform_spread reads, lie side by side
 float moved_load(uint column, uint boundary)
 {
-    uint i = boundary * params.columns + column;
+    uint i = step_major(column, boundary);
     return PASS == DEFORM_MAP ? texelFetch(moved_texels, int(i)).r : moved[i];
 }
-void moved_store(uint column, uint boundary, float v) { moved[boundary * params.columns + column] = v; }
+void moved_store(uint column, uint boundary, float v) { moved[step_major(column, boundary)] = v; }
 vec2 walls_load(uint column, uint boundary)
 {
-    uint i = boundary * params.columns + column;
+    uint i = step_major(column, boundary);
     return unpackHalf2x16(PASS == DEFORM_MAP ? texelFetch(walls_texels, int(i)).r : walls[i]);
 }
-void walls_store(uint column, uint boundary, vec2 v) { walls[boundary * params.columns + column] = packHalf2x16(v); }
+void walls_store(uint column, uint boundary, vec2 v) { walls[step_major(column, boundary)] = packHalf2x16(v); }
 
 #include "deform_column.h"
 
