@@ -6,9 +6,13 @@
 // down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp), in two
 // dispatches: every column solved on its own (DEFORM_SOLVE), then mapped with its neighbours (DEFORM_MAP).
 layout(local_size_x = DEFORM_GROUP_SIZE) in;
-// which pass this pipeline runs: a constant, so each pass's pipeline holds its own code only, and
-// the map pass reads what the solve pass wrote through the texel views
-layout(constant_id = 0) const uint PASS = DEFORM_SOLVE;
+// which pass this pipeline runs: a constant, so each pass's pipeline holds its own code only; and
+// whether the map pass reads what the solve pass wrote through the texel views (a CPU device's) or
+// as storage (a GPU's: deform_bindings.h says why)
+layout(constant_id = 0) const uint VARIANT = DEFORM_SOLVE;
+const uint PASS = VARIANT & DEFORM_MAP;
+// (one comparison: glslang turns && between specialization constants into invalid SPIR-V)
+const bool TEXEL_READS = (VARIANT & (DEFORM_MAP | DEFORM_TEXEL_READS)) == (DEFORM_MAP | DEFORM_TEXEL_READS);
 layout(binding = DEFORM_LABELS_BINDING) uniform usampler3D labels;
 layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 profile[]; };
 layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
@@ -39,20 +43,20 @@ uint step_major(uint column, uint step) { return step * params.columns + column;
 vec4 scratch_load(uint column, uint step)
 {
     uint i = step_major(column, step);
-    return scratch_unpack(PASS == DEFORM_MAP ? texelFetch(scratch_texels, int(i)).xy : scratch[i]);
+    return scratch_unpack(TEXEL_READS ? texelFetch(scratch_texels, int(i)).xy : scratch[i]);
 }
 void scratch_store(uint column, uint step, vec4 v) { scratch[step_major(column, step)] = scratch_pack(v); }
 void map_store(uint pixel, vec2 v) { map[pixel] = v; }
 float moved_load(uint column, uint boundary)
 {
     uint i = step_major(column, boundary);
-    return PASS == DEFORM_MAP ? texelFetch(moved_texels, int(i)).r : moved[i];
+    return TEXEL_READS ? texelFetch(moved_texels, int(i)).r : moved[i];
 }
 void moved_store(uint column, uint boundary, float v) { moved[step_major(column, boundary)] = v; }
 vec2 walls_load(uint column, uint boundary)
 {
     uint i = step_major(column, boundary);
-    return unpackHalf2x16(PASS == DEFORM_MAP ? texelFetch(walls_texels, int(i)).r : walls[i]);
+    return unpackHalf2x16(TEXEL_READS ? texelFetch(walls_texels, int(i)).r : walls[i]);
 }
 void walls_store(uint column, uint boundary, vec2 v) { walls[step_major(column, boundary)] = packHalf2x16(v); }
 

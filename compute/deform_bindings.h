@@ -52,10 +52,13 @@ namespace echosim::kernels {
 #define DEFORM_MOVED_BINDING 5    // float per column per step boundary (max_steps + 1): how far it moved [mm]
 #define DEFORM_WALLS_BINDING 6    // uint per column per step boundary: its distances to what fixes it [mm], two half floats
 // The same three buffers as texel buffers (R32G32_UINT, R32_SFLOAT, R32_UINT), which the map pass
-// reads them through: the solve pass's dispatch wrote them, so a plain read-only view sees them. A
-// CPU device fetches a texel for all its lanes at once, where a storage buffer's load is a loop over
-// the lanes with a branch each (llvmpipe); the map pass's sideways spread makes some twenty loads a
-// step boundary.
+// reads them through on a CPU device (DEFORM_TEXEL_READS): the solve pass's dispatch wrote them, so
+// a plain read-only view sees them. A CPU device fetches a texel for all its lanes at once, where a
+// storage buffer's load is a loop over the lanes with a branch each (llvmpipe); the map pass's
+// sideways spread makes some twenty loads a step boundary. A GPU reads them as storage: there a
+// column's walk is one thread's chain of dependent loads (a few hundred columns, far too few threads
+// to hide a load's wait), and a texel fetch goes through the texture unit, whose wait is longer than
+// a storage load's from the cache (the H100's 1,000 frames/s were measured with storage reads).
 #define DEFORM_SCRATCH_TEXELS_BINDING 7
 #define DEFORM_MOVED_TEXELS_BINDING 8
 #define DEFORM_WALLS_TEXELS_BINDING 9
@@ -72,9 +75,10 @@ namespace echosim::kernels {
 #define DEFORM_SPREAD_MAX_MM 3.0f
 #define DEFORM_MEETING 0.5f
 
-// The two passes, each a dispatch of its own pipeline (the kernel's specialization constant 0):
+// The two passes, each a dispatch of its own pipeline (the kernel's specialization constant 0, bit 0):
 #define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)
 #define DEFORM_MAP 1u    // then the map, from the columns and their neighbours (deform_column_map)
+#define DEFORM_TEXEL_READS 2u  // (with DEFORM_MAP) the map pass reads the solve's buffers through the texel views
 
 #define DEFORM_PAPER_LINEAR 1u  // no labels: one compliance, no decay with depth, no sideways spread
 

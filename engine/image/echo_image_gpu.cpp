@@ -113,12 +113,15 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
 }
 
 EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
-                           const echo::PatientCase& patient)
+                           const echo::PatientCase& patient, DeformReads reads)
     : volume_(std::move(volume)),
       plane_(plane),
       patient_(patient),
       max_steps_((echo::check_plane(plane), echo::deform_max_steps(volume_->grid(), plane))),
       map_columns_(echo::deform_columns(volume_->grid(), plane)),
+      map_reads_(reads == DeformReads::texels || (reads == DeformReads::best && ctx.device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU)
+                     ? DEFORM_TEXEL_READS
+                     : 0u),
       tissues_(ctx, sizeof(echo::TissueTable), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible),
       deform_(ctx, kernels::deform_comp, "deform.comp",
               {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
@@ -144,7 +147,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     slice_.prepare(live);
     slice_.prepare(live | SLICE_WARPED | kernels::slice_taps(echo::map_step(volume_->grid(), plane_)) << SLICE_TAPS_SHIFT);
     deform_.prepare(DEFORM_SOLVE);
-    deform_.prepare(DEFORM_MAP);
+    deform_.prepare(DEFORM_MAP | map_reads_);
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
@@ -162,7 +165,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                                 gpu::MemoryUse::host_visible);
         slot.row_texels = gpu::TexelView(ctx, slot.rows, VK_FORMAT_R32G32B32A32_SFLOAT, "the image rows' post parameters");
         slot.display = gpu::Buffer(ctx, display_bytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
-        // written as storage buffers by the deform's solve pass, read as texel buffers by its map pass
+        // written as storage buffers by the deform's solve pass, read by its map pass as texel buffers (a CPU device) or storage
         constexpr auto storage_and_texels = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
         slot.scratch = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * max_steps_ * sizeof(kernels::uvec2), storage_and_texels,
                                    gpu::MemoryUse::device_local);
@@ -223,8 +226,9 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
         const gpu::Groups columns = gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE);
         deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_SOLVE);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-        deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP);
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            map_reads_ != 0u ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP | map_reads_);
         gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }

@@ -82,10 +82,15 @@ private:
 // that map and nothing else). Only `all` writes the displayed image.
 enum class Stages { all, slice_only, deform_only };
 
+// How the deform's map pass reads what its solve pass wrote (deform_bindings.h, DEFORM_TEXEL_READS):
+// as the device suits best (through texel views on a CPU device, as storage on a GPU), or one of the
+// two whatever the device (tests run both against the CPU twin).
+enum class DeformReads { best, storage, texels };
+
 class EchoImageGpu {
 public:
     EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
-                 const echo::PatientCase& patient);
+                 const echo::PatientCase& patient, DeformReads reads = DeformReads::best);
 
     const echo::ImagePlane& plane() const { return plane_; }
     echo::ScannerSettings& scanner() { return scanner_; }
@@ -121,7 +126,7 @@ private:
         gpu::TexelView row_texels;  // rows, as the slice kernel reads them
         gpu::Buffer scratch, moved, walls, map, grey, labels;
         gpu::TexelView map_texels;  // the map as the slice kernel reads it
-        gpu::TexelView scratch_texels, moved_texels, walls_texels;  // as the deform's map pass reads them
+        gpu::TexelView scratch_texels, moved_texels, walls_texels;  // as the deform's map pass reads them on a CPU device
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
         gpu::Buffer readback;  // host-visible, with enable_readback()
@@ -132,6 +137,7 @@ private:
     echo::ScannerSettings scanner_;
     std::uint32_t max_steps_ = 0;
     std::uint32_t map_columns_ = 0;  // the deform stage's columns (echo::deform_columns)
+    std::uint32_t map_reads_ = 0;    // DEFORM_TEXEL_READS or 0: the map pass's variant bit
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
     std::array<Slot, gpu::kFramesInFlight> slots_;

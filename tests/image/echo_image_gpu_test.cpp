@@ -88,20 +88,22 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
         session::Session coarse_session(session::SessionOptions{.image = coarse});
         coarse_session.press_and_settle(coarse_session.probe().rest, 12.0);
         const echo::EchoFrame coarse_frame = *coarse_session.view().echo;
-        // both ways of holding the grey levels: the sampler's (a GPU's) and the packed one (lavapipe's)
+        // both configurations: a GPU's (the grey levels through the trilinear sampler, the deform's
+        // map pass reading storage) and lavapipe's (the packed volume, the map pass reading texels)
         for (const GreyLayout layout : {GreyLayout::sampler, GreyLayout::packed}) {
-            SCOPED_TRACE(layout == GreyLayout::packed ? "packed volume" : "R8 volume, trilinear sampler");
+            SCOPED_TRACE(layout == GreyLayout::packed ? "packed volume, texel reads" : "R8 volume, trilinear sampler, storage reads");
+            const DeformReads reads = layout == GreyLayout::packed ? DeformReads::texels : DeformReads::storage;
             const auto labelled = std::make_shared<const EchoVolumeGpu>(pool, v.grey, &v.labels, layout);
             const auto bare = std::make_shared<const EchoVolumeGpu>(pool, v.grey, nullptr, layout);
             ASSERT_EQ(labelled->packed(), layout == GreyLayout::packed);
-            EchoImageGpu with_labels(ctx, labelled, s.image_plane(), s.patient());
-            EchoImageGpu without(ctx, bare, s.image_plane(), s.patient());
+            EchoImageGpu with_labels(ctx, labelled, s.image_plane(), s.patient(), reads);
+            EchoImageGpu without(ctx, bare, s.image_plane(), s.patient(), reads);
             with_labels.scanner() = scanner;
             without.scanner() = scanner;
             expect_twins(with_labels.render(pool, rest, true), cpu(rest, true, s.image_plane()), "at rest");
             expect_twins(with_labels.render(pool, pressed, true), cpu(pressed, true, s.image_plane()), "pressed 12 mm");
             expect_twins(without.render(pool, pressed), cpu(pressed, false, s.image_plane()), "pressed, no labels");
-            EchoImageGpu coarse_image(ctx, labelled, coarse, s.patient());
+            EchoImageGpu coarse_image(ctx, labelled, coarse, s.patient(), reads);
             coarse_image.scanner() = scanner;
             const echo::EchoImage coarse_pressed = coarse_image.render(pool, coarse_frame, true);
             ASSERT_EQ(coarse_pressed.map_columns, coarse.columns) << "the coarse plane's map is as fine as its pixels";
