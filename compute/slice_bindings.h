@@ -136,6 +136,10 @@ KERNEL_FN uint slice_taps(float map_step)
     return min(uint(SLICE_RUN) + 1u, uint(ceil(float(SLICE_RUN - 1) * map_step + 1e-3f)) + 2u);
 }
 
+// The flags of a warped frame's slice pipeline over a map of `map_step` (its dispatcher's, which
+// prepares that pipeline before the first pressed frame and must name the same one then).
+KERNEL_FN uint slice_warped_flags(float map_step) { return SLICE_WARPED | (slice_taps(map_step) << SLICE_TAPS_SHIFT); }
+
 // The deform map between two of its columns (map_tap's), lerped; but where the two columns' sources
 // lie further apart than a smooth field puts neighbours (SLICE_MAP_JUMP_MM), they straddle a closed
 // lumen's meeting walls, one column mapping above it and the other below: a lerp would land in the

@@ -62,9 +62,9 @@ double deform_step_mm(const io::Volume& grid, const ImagePlane& plane)
     return std::max({plane.pixel_y_mm(), grid.finest_spacing_mm(), kDeformResolutionMm});
 }
 
-float map_step(const io::Volume& grid, const ImagePlane& plane)
+float map_step(std::uint32_t map_columns, const ImagePlane& plane)
 {
-    return float(double(deform_columns(grid, plane)) / double(plane.columns));  // 1 exactly when the map is as fine
+    return float(double(map_columns) / double(plane.columns));  // 1 exactly when the map is as fine
 }
 
 std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane)
@@ -112,7 +112,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
     const auto px = float(plane.pixel_x_mm()), py = float(plane.pixel_y_mm());
     const std::uint32_t map_columns = deform_columns(grid, plane);
     const auto map_px = float(plane.width_mm / map_columns);
-    const float step = map_step(grid, plane);
+    const float step = map_step(map_columns, plane);
 
     KernelParams k{};
     k.deform = {probe_to_index,
@@ -137,7 +137,7 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                px,
                py,
                float(plane.width_mm),
-               warped ? SLICE_WARPED | kernels::slice_taps(step) << SLICE_TAPS_SHIFT : 0u,
+               warped ? kernels::slice_warped_flags(step) : 0u,
                map_columns,
                step,
                std::uint32_t(grid.size[0]),

@@ -38,8 +38,9 @@ std::uint32_t deform_max_steps(const io::Volume& grid, const ImagePlane& plane);
 // grid nor kDeformResolutionMm, for the same reasons (a 1024-column image over 0.3 mm labels walks
 // 134 columns). The slice stage reads the map between them, linearly (slice_bindings.h, map_tap).
 std::uint32_t deform_columns(const io::Volume& grid, const ImagePlane& plane);
-// Map columns per image column (SliceParams::map_step): 1 when the map is as fine as the image.
-float map_step(const io::Volume& grid, const ImagePlane& plane);
+// Map columns per image column (SliceParams::map_step) for the deform map's `map_columns`
+// (deform_columns): 1 when the map is as fine as the image.
+float map_step(std::uint32_t map_columns, const ImagePlane& plane);
 // The frame's skin profile at the deform stage's `columns` column centres, linear between the
 // image columns' (empty when the frame presses nothing).
 std::vector<ColumnProfile> deform_profiles(const EchoFrame& frame, const ImagePlane& plane, std::uint32_t columns);

@@ -145,7 +145,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
     // the live frames' variants, pressed and not, made now rather than at the first frame of each
     const std::uint32_t live = SLICE_POST | (volume_->packed() ? SLICE_PACKED : 0u);
     slice_.prepare(live);
-    slice_.prepare(live | SLICE_WARPED | kernels::slice_taps(echo::map_step(volume_->grid(), plane_)) << SLICE_TAPS_SHIFT);
+    slice_.prepare(live | kernels::slice_warped_flags(echo::map_step(map_columns_, plane_)));
     deform_.prepare(DEFORM_SOLVE);
     deform_.prepare(DEFORM_MAP | map_reads_);
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
