@@ -140,11 +140,12 @@ SoakResult run_soak_session(const SoakOptions& o)
         so.device = std::make_shared<device::ScriptedDevice>(make_round_trip_trajectory(leg), "the slide script, there and back",
                                                              device::ScriptedDevice::Playback::loop);
         DefaultScene scene(so);
-        r.haptic_priority = scene.session.haptics_note().empty() ? "SCHED_FIFO" : scene.session.haptics_note();
+        r.haptic_priority = scene.session.haptics_note().empty() ? "SCHED_FIFO, CPUs kept awake" : scene.session.haptics_note();
         gpu::CommandPool commands(ctx);  // this thread's
         gpu::OffscreenPresenter presenter(commands, {o.width, o.height});
         SessionFrame frame(ctx, commands, presenter.format(), scene, volumes);
         haptics::HapticLoop& loop = *scene.session.haptic_loop();
+        r.haptic_cpus_awake = loop.cpus_awake();
         io::RgbaImage image;  // every frame read back into it (its pixels allocated once)
         r.samples.reserve(std::size_t(o.seconds) + 2);  // no growth of our own during the run
 
@@ -213,6 +214,7 @@ std::string soak_json(const SoakResult& r)
         {"physics_late_steps", r.physics_late_steps},
         {"haptic_ticks", r.haptic_ticks},
         {"haptic_priority", r.haptic_priority},
+        {"haptic_cpus_awake", r.haptic_cpus_awake},
         {"haptic_period_p50_ms", r.haptic_p50_ms},
         {"haptic_period_p99_ms", r.haptic_p99_ms},
         {"haptic_period_max_ms", r.haptic_max_ms},

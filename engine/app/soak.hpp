@@ -86,7 +86,8 @@ struct SoakResult {
     long long frames = 0;
     long long physics_steps = 0, physics_late_steps = 0;
     long long haptic_ticks = 0;
-    std::string haptic_priority;  // "SCHED_FIFO", or why not
+    std::string haptic_priority;  // "SCHED_FIFO, CPUs kept awake", or what the loop lacks and why
+    bool haptic_cpus_awake = false;  // the loop held its wake-latency request (haptics/cpu_wake_latency.hpp)
     double haptic_p50_ms = 0, haptic_p99_ms = 0, haptic_max_ms = 0;
     long long haptic_missed = 0;
     std::uint32_t validation_messages = 0;  // counted until the device was destroyed (leaks included)

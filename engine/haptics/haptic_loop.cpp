@@ -106,21 +106,28 @@ void HapticLoop::tick(double t_s)
 void HapticLoop::start()
 {
     if (running_.exchange(true)) return;
+    if (options_.realtime_priority && options_.keep_cpus_awake) wake_latency_ = CpuWakeLatency(0);
     started_ = 0;
     thread_ = std::thread([this] { run(); });
     while (started_.load(std::memory_order_acquire) == 0) std::this_thread::yield();
     priority_note_.clear();
-    if (!options_.realtime_priority)
+    if (!options_.realtime_priority) {
         priority_note_ = "haptic loop: real-time priority not asked for; running best effort";
-    else if (priority_errno_ != 0)
+        return;
+    }
+    if (priority_errno_ != 0)
         priority_note_ = std::string("haptic loop: real-time priority (SCHED_FIFO) refused: ") + std::strerror(priority_errno_) +
                          "; running best effort (grant it with an rtprio limit in /etc/security/limits.d, or CAP_SYS_NICE)";
+    if (!wake_latency_.refusal().empty())
+        priority_note_ += std::string(priority_note_.empty() ? "haptic loop: " : "; ") + "the CPUs may idle between ticks and wake late (" +
+                          wake_latency_.refusal() + ": root, or a udev rule, may grant it)";
 }
 
 void HapticLoop::stop()
 {
     if (!running_.exchange(false)) return;
     if (thread_.joinable()) thread_.join();
+    wake_latency_.release();
 }
 
 PeriodStats HapticLoop::stats()

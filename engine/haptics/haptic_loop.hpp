@@ -23,6 +23,7 @@
 
 #include "core/triple_buffer.hpp"
 #include "device/device.hpp"
+#include "haptics/cpu_wake_latency.hpp"
 #include "haptics/force_law.hpp"
 #include "haptics/period_stats.hpp"
 #include "haptics/probe_mapping.hpp"
@@ -35,6 +36,7 @@ struct HapticOptions {
     double spin_us = 60.0;          // spin this long before each deadline instead of sleeping
     bool local_model = true;        // false: hold the last physics force (the paper's comparison)
     bool realtime_priority = true;  // ask for SCHED_FIFO (needs CAP_SYS_NICE or an rtprio limit)
+    bool keep_cpus_awake = true;    // with realtime_priority: hold a CpuWakeLatency request of 0 us while running
     double velocity_cutoff_hz = 20; // the probe's velocity, from its poses, low-passed
 };
 
@@ -66,8 +68,10 @@ public:
     void start();
     void stop();
     bool running() const { return running_.load(); }
-    // "" when it got real-time priority, else why not (said once, by whoever starts it)
+    // "" when it runs real time (SCHED_FIFO, and the CPUs kept from idling deeper than polling:
+    // cpu_wake_latency.hpp), else what it lacks and why (said once, by whoever starts it)
     const std::string& priority_note() const { return priority_note_; }
+    bool cpus_awake() const { return wake_latency_.held(); }
 
     // the session's driver thread (one reader): the latest tick
     const HapticSample& latest() { return out_.read(); }
@@ -103,6 +107,7 @@ private:
     std::atomic<int> started_{0};  // 0 starting, 1 running (the thread settled its priority)
     std::string priority_note_;
     int priority_errno_ = 0;
+    CpuWakeLatency wake_latency_;  // held from start() to stop()
 };
 
 }  // namespace echosim::haptics

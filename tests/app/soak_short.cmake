@@ -15,7 +15,7 @@ if(NOT out MATCHES "resident memory .* MiB after the warm-up" OR NOT out MATCHES
 endif()
 file(READ ${JSON} j)
 foreach(field seconds frames physics_steps haptic_ticks rss_start_mib rss_end_mib rss_max_mib validation_messages
-              haptic_period_p99_ms haptic_period_max_ms haptic_missed_deadlines warmup_s pass)
+              haptic_period_p99_ms haptic_period_max_ms haptic_missed_deadlines haptic_cpus_awake warmup_s pass)
   string(JSON v ERROR_VARIABLE e GET "${j}" ${field})
   if(e)
     message(FATAL_ERROR "soak JSON: no ${field}: ${e}\n${j}")

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <thread>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "device/null_device.hpp"
@@ -86,6 +88,7 @@ TEST(HapticLoop, KeepsItsRateWhileThePhysicsIsStalled)
     HapticLoop loop(physics, std::make_shared<device::NullDevice>(), mapping, o);
     physics.start();
     loop.start();
+    EXPECT_FALSE(loop.cpus_awake()) << "a best-effort loop asked to keep the CPUs awake";
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     stall = true;
     while (!stalled) std::this_thread::yield();
@@ -98,6 +101,23 @@ TEST(HapticLoop, KeepsItsRateWhileThePhysicsIsStalled)
     stall = false;
     loop.stop();
     physics.stop();
+}
+
+// A real-time loop holds the wake-latency request while it runs, or says why it cannot, naming the file.
+TEST(HapticLoop, KeepsTheCpusAwakeWhileRunningOrSaysWhyNot)
+{
+    physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
+    const ProbeMapping mapping(test::leg());
+    HapticLoop loop(physics, std::make_shared<device::NullDevice>(), mapping);
+    EXPECT_FALSE(loop.cpus_awake());
+    loop.start();
+    const bool writable = ::access(CpuWakeLatency::kDevice, W_OK) == 0;
+    EXPECT_EQ(loop.cpus_awake(), writable) << loop.priority_note();
+    if (!writable) {
+        EXPECT_NE(loop.priority_note().find(CpuWakeLatency::kDevice), std::string::npos) << loop.priority_note();
+    }
+    loop.stop();
+    EXPECT_FALSE(loop.cpus_awake()) << "the request outlived the loop";
 }
 
 TEST(HapticLoop, ATickAllocatesNothing)
