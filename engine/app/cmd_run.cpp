@@ -116,20 +116,22 @@ int run_window(const RunArgs& args)
         return kExitBadInput;
     }
     VolumePair volumes;
+    TerminalProgress progress("echosim run");
     try {
         session_options.patient.which = echo::parse_case(args.case_name);
         if (args.volume.empty() && !args.labels.empty())
             throw std::invalid_argument("--labels " + args.labels.string() + ": give the --volume they label");
         if (args.volume.empty()) {
-            volumes = case_volume(session_options.patient.which, terminal_progress("echosim run"));
+            volumes = case_volume(session_options.patient.which, progress);
         } else {
             volumes = user_volume(args.volume, args.labels);
         }
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "\nechosim run: %s\n", e.what());
+        progress.finish();
+        std::fprintf(stderr, "echosim run: %s\n", e.what());
         return kExitBadInput;
     }
-    std::fprintf(stderr, "\r\033[K");
+    progress.finish();
     std::printf("echosim run: echographic volume: %s\n", volumes.description.c_str());
 
     gpu::Window window({args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"});

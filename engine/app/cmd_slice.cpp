@@ -73,15 +73,17 @@ int run_slice(const SliceArgs& args)
     options.patient.heart_rate_bpm = args.heart_rate_bpm;
 
     VolumePair volumes;
+    TerminalProgress progress("echosim slice");
     try {
         if (args.volume.empty())
-            volumes = case_volume(options.patient.which, terminal_progress("echosim slice"));
+            volumes = case_volume(options.patient.which, progress);
         else
             volumes = user_volume(args.volume, args.labels);
     } catch (const std::exception& e) {
+        progress.finish();
         return fail(e.what());
     }
-    if (args.volume.empty()) std::fprintf(stderr, "\n");
+    progress.finish();
 
     session::Session session(options);
     session::SettleReport settle;  // none: resting on the skin

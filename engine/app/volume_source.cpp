@@ -145,15 +145,31 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     return pair;
 }
 
-std::function<void(const std::string&, double)> terminal_progress(const char* command)
+TerminalProgress::TerminalProgress(std::string command) : state_(std::make_shared<State>())
 {
-    return [command, last = std::string(), percent = -1](const std::string& stage, double done) mutable {
-        const int now = int(100 * done);
-        if (stage == last && now == percent) return;
-        last = stage;
-        percent = now;
-        std::fprintf(stderr, "\r%s: making the default volume (once; it is cached): %s %3d %%\033[K", command, stage.c_str(), now);
-    };
+    state_->command = std::move(command);
+    state_->terminal = ::isatty(::fileno(stderr)) == 1;
+}
+
+void TerminalProgress::operator()(const std::string& stage, double done)
+{
+    State& s = *state_;
+    const int whole = std::clamp(int(100 * done), 0, 100);
+    const int percent = s.terminal ? whole : whole / 25 * 25;
+    if (stage == s.stage && percent == s.percent) return;
+    s.stage = stage;
+    s.percent = percent;
+    s.shown = true;
+    if (s.terminal)
+        std::fprintf(stderr, "\r%s: making the default volume (once; it is cached): %s %3d %%\033[K", s.command.c_str(), stage.c_str(), percent);
+    else
+        std::fprintf(stderr, "%s: making the default volume (once; it is cached): %s %3d %%\n", s.command.c_str(), stage.c_str(), percent);
+}
+
+void TerminalProgress::finish()
+{
+    if (state_->shown && state_->terminal) std::fputc('\n', stderr);
+    state_->shown = false;
 }
 
 VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels)

@@ -32,9 +32,25 @@ std::filesystem::path cache_folder();
 // cannot be written, io::NrrdError naming the file when a cached one cannot be read.
 VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress);
 
-// A progress callback for case_volume that shows "<command>: making the default volume: <stage>
-// NN %" on one terminal line, rewritten only when the stage or the whole percent changes.
-std::function<void(const std::string& stage, double done)> terminal_progress(const char* command);
+// case_volume's progress on stderr, "<command>: making the default volume (once; it is cached):
+// <stage> NN %". On a terminal, one line rewritten in place when the stage or the whole percent
+// changes; in a log (a pipe, a file: CI's, a user's `2> log`), a line of its own at each stage's
+// 0, 25, 50, 75 and 100 %, with no carriage returns or terminal codes to garble it. Copies (the
+// std::function case_volume keeps) share one state; finish() ends the terminal's line, if any.
+class TerminalProgress {
+public:
+    explicit TerminalProgress(std::string command);
+    void operator()(const std::string& stage, double done);
+    void finish();  // after the last update: nothing when nothing was shown
+
+private:
+    struct State {
+        std::string command, stage;
+        int percent = -1;
+        bool terminal = false, shown = false;
+    };
+    std::shared_ptr<State> state_;
+};
 
 // The user's volume and labels (empty path: none), NRRD or MetaImage (io::read_volume), read and
 // checked (labels on the volume's grid). The image pipeline reads 8-bit grey and 8-bit tissue codes:

@@ -16,6 +16,15 @@ run_ok("first slice" slice --out ${WORK}/a.png --gpu cpu --validation)
 if(NOT last_out MATCHES "made and cached in" OR NOT EXISTS ${WORK}/cache/echosim/volumes/healthy-0.3mm-v1/labels.nrrd)
   message(FATAL_ERROR "the default volume was not made and cached:\n${last_out}")
 endif()
+# its progress, read from a pipe as a log would: whole lines, a stage's at 0, 25, 50, 75 and 100 %
+# only, with no carriage return or terminal code (a terminal gets one line rewritten in place)
+string(ASCII 27 escape)
+string(REGEX MATCHALL "it is cached\\): [a-z ]+ +[0-9]+ %\n" progress_lines "${last_out}")  # no ';': a CMake list's separator
+list(LENGTH progress_lines progress_count)
+if(last_out MATCHES "\r" OR last_out MATCHES "${escape}" OR progress_count LESS 3 OR progress_count GREATER 15
+   OR NOT last_out MATCHES "reconstructing 100 %\n")
+  message(FATAL_ERROR "the progress was not whole lines (${progress_count} of them):\n${last_out}")
+endif()
 run_ok("second slice" slice --out ${WORK}/b.nrrd --force 12 --gpu cpu --validation)
 if(NOT last_out MATCHES "cached in" OR last_out MATCHES "making")
   message(FATAL_ERROR "the cached volume was not taken:\n${last_out}")
