@@ -145,10 +145,13 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     return pair;
 }
 
-TerminalProgress::TerminalProgress(std::string command) : state_(std::make_shared<State>())
+TerminalProgress::TerminalProgress(std::string command) : TerminalProgress(std::move(command), stderr, ::isatty(::fileno(stderr)) == 1) {}
+
+TerminalProgress::TerminalProgress(std::string command, std::FILE* out, bool terminal) : state_(std::make_shared<State>())
 {
     state_->command = std::move(command);
-    state_->terminal = ::isatty(::fileno(stderr)) == 1;
+    state_->out = out;
+    state_->terminal = terminal;
 }
 
 void TerminalProgress::operator()(const std::string& stage, double done)
@@ -161,14 +164,14 @@ void TerminalProgress::operator()(const std::string& stage, double done)
     s.percent = percent;
     s.shown = true;
     if (s.terminal)
-        std::fprintf(stderr, "\r%s: making the default volume (once; it is cached): %s %3d %%\033[K", s.command.c_str(), stage.c_str(), percent);
+        std::fprintf(s.out, "\r%s: making the default volume (once; it is cached): %s %3d %%\033[K", s.command.c_str(), stage.c_str(), percent);
     else
-        std::fprintf(stderr, "%s: making the default volume (once; it is cached): %s %3d %%\n", s.command.c_str(), stage.c_str(), percent);
+        std::fprintf(s.out, "%s: making the default volume (once; it is cached): %s %3d %%\n", s.command.c_str(), stage.c_str(), percent);
 }
 
 void TerminalProgress::finish()
 {
-    if (state_->shown && state_->terminal) std::fputc('\n', stderr);
+    if (state_->shown && state_->terminal) std::fputc('\n', state_->out);
     state_->shown = false;
 }
 

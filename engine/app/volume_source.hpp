@@ -7,6 +7,7 @@
 // run would take; the folder's name carries the recipe's version, so a changed recipe is remade.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -39,13 +40,15 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
 // std::function case_volume keeps) share one state; finish() ends the terminal's line, if any.
 class TerminalProgress {
 public:
-    explicit TerminalProgress(std::string command);
+    explicit TerminalProgress(std::string command);  // on stderr, a terminal when isatty says so
+    TerminalProgress(std::string command, std::FILE* out, bool terminal);
     void operator()(const std::string& stage, double done);
     void finish();  // after the last update: nothing when nothing was shown
 
 private:
     struct State {
         std::string command, stage;
+        std::FILE* out = nullptr;
         int percent = -1;
         bool terminal = false, shown = false;
     };
