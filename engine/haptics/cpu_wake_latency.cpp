@@ -17,7 +17,9 @@ CpuWakeLatency::CpuWakeLatency(std::int32_t max_us, const std::string& file)
     }
     fd_ = ::open(file.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd_ < 0) {
-        refusal_ = file + ": " + std::strerror(errno);
+        const int error = errno;
+        refusal_ = file + ": " + std::strerror(error);
+        if (error == EACCES || error == EPERM) refusal_ += " (root may write it, or a udev rule let a group write it)";
         return;
     }
     // the value is a binary 32-bit integer (the kernel also takes hex text; binary is exact)

@@ -120,7 +120,7 @@ void HapticLoop::start()
                          "; running best effort (grant it with an rtprio limit in /etc/security/limits.d, or CAP_SYS_NICE)";
     if (!wake_latency_.refusal().empty())
         priority_note_ += std::string(priority_note_.empty() ? "haptic loop: " : "; ") + "the CPUs may idle between ticks and wake late (" +
-                          wake_latency_.refusal() + ": root, or a udev rule, may grant it)";
+                          wake_latency_.refusal() + ")";
 }
 
 void HapticLoop::stop()

@@ -57,6 +57,7 @@ TEST(CpuWakeLatency, ARefusalNamesTheFileAndWhy)
     EXPECT_FALSE(request.held());
     EXPECT_NE(request.refusal().find(missing), std::string::npos) << request.refusal();
     EXPECT_NE(request.refusal().find("No such file"), std::string::npos) << request.refusal();
+    EXPECT_EQ(request.refusal().find("udev"), std::string::npos) << "a permission hint for a missing file: " << request.refusal();
 
     const auto file = stand_in("wake_negative");
     CpuWakeLatency negative(-1, file.string());
