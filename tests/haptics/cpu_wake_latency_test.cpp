@@ -6,30 +6,21 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
-#include <vector>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
+
+#include "test_files.hpp"
 
 namespace echosim::haptics {
 namespace {
 
+// an empty file: the device exists before the request opens it
 std::filesystem::path stand_in(const char* name)
 {
-    const std::filesystem::path p =
-        std::filesystem::temp_directory_path() / (std::string("echosim_") + name + "_" + std::to_string(::getpid()));
-    std::ofstream(p, std::ios::trunc).flush();  // the device exists before the request opens it
+    const std::filesystem::path p = test::temp_path("wake", name);
+    test::write_bytes(p, "");
     return p;
-}
-
-std::vector<char> bytes_of(const std::filesystem::path& p)
-{
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(CpuWakeLatency, WritesTheBoundAsOneBinaryInt32)
@@ -41,7 +32,7 @@ TEST(CpuWakeLatency, WritesTheBoundAsOneBinaryInt32)
             EXPECT_TRUE(request.held()) << request.refusal();
             EXPECT_EQ(request.refusal(), "");
         }
-        const std::vector<char> b = bytes_of(file);
+        const std::string b = test::read_bytes(file);
         ASSERT_EQ(b.size(), 4u) << "bound " << bound;
         std::int32_t written = -1;
         std::memcpy(&written, b.data(), 4);
@@ -52,7 +43,7 @@ TEST(CpuWakeLatency, WritesTheBoundAsOneBinaryInt32)
 
 TEST(CpuWakeLatency, ARefusalNamesTheFileAndWhy)
 {
-    const std::string missing = (std::filesystem::temp_directory_path() / "echosim_no_such_dir" / "cpu_dma_latency").string();
+    const std::string missing = (test::temp_path("wake", "no_such_dir") / "cpu_dma_latency").string();
     CpuWakeLatency request(0, missing);
     EXPECT_FALSE(request.held());
     EXPECT_NE(request.refusal().find(missing), std::string::npos) << request.refusal();
@@ -63,7 +54,7 @@ TEST(CpuWakeLatency, ARefusalNamesTheFileAndWhy)
     CpuWakeLatency negative(-1, file.string());
     EXPECT_FALSE(negative.held());
     EXPECT_NE(negative.refusal().find("-1 us"), std::string::npos) << negative.refusal();
-    EXPECT_TRUE(bytes_of(file).empty()) << "a refused bound was written";
+    EXPECT_TRUE(test::read_bytes(file).empty()) << "a refused bound was written";
     std::filesystem::remove(file);
 }
 
@@ -83,7 +74,7 @@ TEST(CpuWakeLatency, ReleasedOnceWhenMovedOrReleased)
     c.release();
     EXPECT_FALSE(c.held());
     c.release();  // twice is harmless
-    EXPECT_EQ(bytes_of(file).size(), 4u);  // written once, by the one request
+    EXPECT_EQ(test::read_bytes(file).size(), 4u);  // written once, by the one request
     std::filesystem::remove(file);
 }
 
