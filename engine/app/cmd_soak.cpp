@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
@@ -34,9 +35,14 @@ int run_soak(const SoakArgs& args)
                 r.rss.start_mib, r.rss.end_mib, r.rss.growth_mib, r.rss.trend_mib, r.rss.slope_mib_per_min, r.rss.max_mib);
     std::printf("echosim soak: haptic period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines; %u validation messages\n",
                 r.haptic_p50_ms, r.haptic_p99_ms, r.haptic_max_ms, r.haptic_missed, r.validation_messages);
+    if (r.host_steal_s < 0)
+        std::printf("echosim soak: host steal cannot be read (/proc/stat): every second counts as free of it\n");
+    else
+        std::printf("echosim soak: host steal %.2f s (all CPUs) in %.0f of %.0f s; in the other %.0f s, haptic period error p99 %.3f ms\n",
+                    r.host_steal_s, r.seconds - r.steal_free_s, r.seconds, r.steal_free_s, r.haptic_steal_free_p99_ms);
     for (const SoakBound& b : r.bounds)
-        std::printf("echosim soak:   %-24s %10.3f %-3s <= %g %-3s %s%s\n", b.name.c_str(), b.value, b.unit.c_str(), b.limit, b.unit.c_str(),
-                    b.held ? "held" : "NOT HELD", b.enforced ? "" : " (reported only)");
+        std::printf("echosim soak:   %-28s %10.3f %-3s <= %g %-3s %s%s\n", b.name.c_str(), b.value, b.unit.c_str(), b.limit, b.unit.c_str(),
+                    b.held ? "held" : "NOT HELD", !b.note.empty() ? (" (" + b.note + ")").c_str() : b.enforced ? "" : " (reported only)");
     if (!args.json.empty()) {
         io::write_file<std::runtime_error>(args.json, soak_json(r));  // a failure: main names the file
         std::printf("echosim soak: wrote %s\n", args.json.c_str());

@@ -14,6 +14,27 @@ void PeriodStats::add_period(double period_ms, double nominal_ms)
     max_error_ms = std::max(max_error_ms, err);
 }
 
+PeriodStats PeriodStats::since(const PeriodStats& earlier) const
+{
+    PeriodStats d;
+    for (std::size_t i = 0; i < error_us.size(); ++i) {
+        d.error_us[i] = error_us[i] - earlier.error_us[i];
+        if (d.error_us[i] > 0) d.max_error_ms = std::min(double(i + 1) / 1000.0, max_error_ms);
+    }
+    d.periods = periods - earlier.periods;
+    d.missed_deadlines = missed_deadlines - earlier.missed_deadlines;
+    return d;
+}
+
+void PeriodStats::merge(const PeriodStats& other)
+{
+    for (std::size_t i = 0; i < error_us.size(); ++i) error_us[i] += other.error_us[i];
+    periods += other.periods;
+    missed_deadlines += other.missed_deadlines;
+    max_error_ms = std::max(max_error_ms, other.max_error_ms);
+    max_tick_us = std::max(max_tick_us, other.max_tick_us);
+}
+
 double PeriodStats::error_quantile_ms(double q) const
 {
     if (periods == 0) return 0.0;

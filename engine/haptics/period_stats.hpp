@@ -18,6 +18,11 @@ struct PeriodStats {
     double max_tick_us = 0;  // the longest tick's work (device, force, hand-offs)
 
     void add_period(double period_ms, double nominal_ms);
+    // the periods added since `earlier`, a copy of these stats taken before: its largest error is the
+    // upper edge of its highest non-empty bin (at most this one's largest), its longest tick unknown (0)
+    PeriodStats since(const PeriodStats& earlier) const;
+    // adds `other`'s periods to these
+    void merge(const PeriodStats& other);
     // the error below which a fraction q of the periods fall [ms] (to the bin, 1 us); 0 with none
     double error_quantile_ms(double q) const;
 };
