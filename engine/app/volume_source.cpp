@@ -163,10 +163,9 @@ void TerminalProgress::operator()(const std::string& stage, double done)
     s.stage = stage;
     s.percent = percent;
     s.shown = true;
-    if (s.terminal)
-        std::fprintf(s.out, "\r%s: making the default volume (once; it is cached): %s %3d %%\033[K", s.command.c_str(), stage.c_str(), percent);
-    else
-        std::fprintf(s.out, "%s: making the default volume (once; it is cached): %s %3d %%\n", s.command.c_str(), stage.c_str(), percent);
+    // a terminal's line: back to its start, and clear what a longer one left; a log's: a line of its own
+    std::fprintf(s.out, "%s%s: making the default volume (once; it is cached): %s %3d %%%s", s.terminal ? "\r" : "", s.command.c_str(),
+                 stage.c_str(), percent, s.terminal ? "\033[K" : "\n");
 }
 
 void TerminalProgress::finish()

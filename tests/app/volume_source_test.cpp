@@ -73,22 +73,30 @@ TEST(VolumeSource, RefusesLabelsThatAreNotTissueCodes)
     std::filesystem::remove(labels);
 }
 
-// The progress of the default volume's making, as a terminal and as a log receive it.
-std::string progress_text(bool terminal)
+// What `write` writes to a stream, as text.
+std::string written(const std::function<void(std::FILE*)>& write)
 {
     char* buffer = nullptr;
     std::size_t size = 0;
     std::FILE* out = open_memstream(&buffer, &size);
-    TerminalProgress progress("echosim x", out, terminal);
-    const std::function<void(const std::string&, double)> copy = progress;  // as case_volume keeps it
-    for (int i = 0; i <= 200; ++i) copy("imaging", i / 200.0);
-    for (int i = 0; i <= 10; ++i) copy("filling", i / 10.0);
-    progress.finish();
-    progress.finish();  // a second finish adds nothing
+    write(out);
     std::fclose(out);
     std::string text(buffer, size);
     std::free(buffer);
     return text;
+}
+
+// The progress of the default volume's making, as a terminal and as a log receive it.
+std::string progress_text(bool terminal)
+{
+    return written([terminal](std::FILE* out) {
+        TerminalProgress progress("echosim x", out, terminal);
+        const std::function<void(const std::string&, double)> copy = progress;  // as case_volume keeps it
+        for (int i = 0; i <= 200; ++i) copy("imaging", i / 200.0);
+        for (int i = 0; i <= 10; ++i) copy("filling", i / 10.0);
+        progress.finish();
+        progress.finish();  // a second finish adds nothing
+    });
 }
 
 TEST(TerminalProgress, OnATerminalOneLineRewrittenInPlaceAndEnded)
@@ -116,13 +124,8 @@ TEST(TerminalProgress, InALogWholeLinesAtEachQuarter)
 
 TEST(TerminalProgress, NothingShownNothingEnded)
 {
-    char* buffer = nullptr;
-    std::size_t size = 0;
-    std::FILE* out = open_memstream(&buffer, &size);
-    TerminalProgress("echosim x", out, true).finish();  // a cached volume: no progress was called
-    std::fclose(out);
-    EXPECT_EQ(size, 0u);
-    std::free(buffer);
+    // a cached volume: no progress was called
+    EXPECT_EQ(written([](std::FILE* out) { TerminalProgress("echosim x", out, true).finish(); }), "");
 }
 
 }  // namespace
