@@ -165,9 +165,7 @@ SoakResult run_soak_session(const SoakOptions& o)
         // The haptic periods of the seconds in which the host took no CPU time (the steal counter
         // did not move from one sample to the next), for the bound that judges our loop, not the host.
         haptics::PeriodStats steal_free, at_last_sample;
-        const std::optional<double> steal_at_start = host_steal_s();
-        std::optional<double> steal_at_last_sample;
-        double last_sample_t = 0;
+        std::optional<double> steal_at_start;  // read with the first sample
         const auto start = std::chrono::steady_clock::now();
         auto last = start;
         const double progress_every = std::max(5.0, 0.1 * o.seconds);
@@ -178,14 +176,16 @@ SoakResult run_soak_session(const SoakOptions& o)
             if (t >= next_sample || t >= o.seconds) {
                 const haptics::PeriodStats h = loop.stats();
                 const std::optional<double> steal = host_steal_s();
-                if (!r.samples.empty() && !(steal && steal_at_last_sample && *steal > *steal_at_last_sample)) {
-                    steal_free.merge(h.since(at_last_sample));
-                    r.steal_free_s += t - last_sample_t;
+                if (r.samples.empty()) steal_at_start = steal;
+                const double stolen = steal && steal_at_start ? *steal - *steal_at_start : -1.0;  // -1: cannot be read
+                if (!r.samples.empty()) {
+                    const SoakSample& before = r.samples.back();
+                    if (!(stolen >= 0 && before.host_steal_s >= 0 && stolen > before.host_steal_s)) {
+                        steal_free.merge(h.since(at_last_sample));
+                        r.steal_free_s += t - before.t_s;
+                    }
                 }
                 at_last_sample = h;
-                steal_at_last_sample = steal;
-                last_sample_t = t;
-                const double stolen = steal && steal_at_start ? *steal - *steal_at_start : -1.0;
                 r.samples.push_back({t, resident_mib(), r.frames, h.missed_deadlines, stolen});
                 next_sample = std::floor(t) + 1.0;
                 if (o.progress && (t >= next_progress || t >= o.seconds)) {
