@@ -1,8 +1,10 @@
 #include <cstdio>
+#include <string>
 
 #include <glm/vec3.hpp>
 
 #include "app/commands.hpp"
+#include "app/terminal_progress.hpp"
 #include "echo/phantom.hpp"
 #include "echo/reconstruct.hpp"
 #include "echo/sweep.hpp"
@@ -38,10 +40,11 @@ int run_phantom(const PhantomArgs& args)
     options.frames = args.frames;
     options.seed = args.seed;
     options.spec.pixel_mm = args.pixel_mm;
-    const echo::TrackedSweep sweep = echo::make_sweep(leg, medium, options, [](int done, int total) {
-        if (done % 20 == 0 || done == total) std::fprintf(stderr, "\rechosim phantom: frame %d of %d", done, total);
-        if (done == total) std::fprintf(stderr, "\n");
+    TerminalProgress progress("echosim phantom: ");
+    const echo::TrackedSweep sweep = echo::make_sweep(leg, medium, options, [&](int done, int total) {
+        progress("imaging the sweep (" + std::to_string(total) + " frames)", double(done) / total);
     });
+    progress.finish();
     // the frames' tissue labels, a sweep of their own beside it, for reconstructing the labels
     io::Sweep labels = sweep.sweep;
     labels.pixels = sweep.labels;

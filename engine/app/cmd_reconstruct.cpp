@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "app/commands.hpp"
+#include "app/terminal_progress.hpp"
 #include "echo/phantom.hpp"
 #include "echo/reconstruct.hpp"
 #include "io/nrrd.hpp"
@@ -187,6 +188,8 @@ int run_reconstruct(const ReconstructArgs& args)
                 grid.size[2], grid.spacing.x, grid.spacing.y, grid.spacing.z,
                 plan.reference_frame.c_str());
 
+    TerminalProgress progress("echosim reconstruct: ");
+    const std::string inserting = "inserting the frames (" + std::to_string(valid_transforms.size()) + ")";
     const auto t0 = clock::now();
     std::size_t inserted = 0;
     for (std::size_t f = 0; f < sweep.frames.size(); ++f) {
@@ -196,20 +199,18 @@ int run_reconstruct(const ReconstructArgs& args)
                                                              : std::span<const std::uint8_t>();
         r->insert(px, lb, sweep.frames[f].image_to_reference);
         ++inserted;
-        if (inserted % 20 == 0 || inserted == valid_transforms.size())
-            std::fprintf(stderr, "\rechosim reconstruct: inserted %zu of %zu frames", inserted, valid_transforms.size());
+        progress(inserting, double(inserted) / double(valid_transforms.size()));
     }
     const double insert_s = std::chrono::duration<double>(clock::now() - t0).count();
-    std::fprintf(stderr, "\n");
     const double covered = double(r->filled_voxels()) / double(r->voxel_count());
     int passes = 0;
     double fill_s = 0;
     if (plan.fill_holes) {
         const auto t1 = clock::now();
-        passes = r->fill_holes([](double done) { std::fprintf(stderr, "\rechosim reconstruct: holes filled %3.0f %%", 100 * done); });
+        passes = r->fill_holes([&](double done) { progress("filling the holes", done); });
         fill_s = std::chrono::duration<double>(clock::now() - t1).count();
-        std::fprintf(stderr, "\n");
     }
+    progress.finish();
 
     io::Volume volume = r->volume();
     volume.key_values["echosim_source"] = args.sweep.filename().string();

@@ -15,6 +15,7 @@
 #include "app/gpu_args.hpp"
 #include "app/live_link.hpp"
 #include "app/session_frame.hpp"
+#include "app/terminal_progress.hpp"
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
 #include "device/mouse_keyboard_device.hpp"
@@ -116,7 +117,7 @@ int run_window(const RunArgs& args)
         return kExitBadInput;
     }
     VolumePair volumes;
-    TerminalProgress progress("echosim run");
+    TerminalProgress progress(std::string("echosim run: ") + kCaseVolumeProgress);
     try {
         session_options.patient.which = echo::parse_case(args.case_name);
         if (args.volume.empty() && !args.labels.empty())

@@ -11,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
+#include "app/terminal_progress.hpp"
 #include "app/volume_source.hpp"
 #include "echo/echo_image_cpu.hpp"
 #include "echo/kernel_params.hpp"
@@ -73,7 +74,7 @@ int run_slice(const SliceArgs& args)
     options.patient.heart_rate_bpm = args.heart_rate_bpm;
 
     VolumePair volumes;
-    TerminalProgress progress("echosim slice");
+    TerminalProgress progress(std::string("echosim slice: ") + kCaseVolumeProgress);
     try {
         if (args.volume.empty())
             volumes = case_volume(options.patient.which, progress);

@@ -7,7 +7,6 @@
 #include <limits>
 #include <stdexcept>
 #include <system_error>
-#include <unistd.h>
 
 #include "echo/case_volume.hpp"
 #include "echo/echo_image_cpu.hpp"
@@ -143,35 +142,6 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     VolumePair pair{std::make_shared<io::Volume>(std::move(made.volume)), std::make_shared<io::Volume>(std::move(made.labels)),
                     "the " + std::string(echo::case_name(which)) + " case's volume, made and cached in " + folder.string()};
     return pair;
-}
-
-TerminalProgress::TerminalProgress(std::string command) : TerminalProgress(std::move(command), stderr, ::isatty(::fileno(stderr)) == 1) {}
-
-TerminalProgress::TerminalProgress(std::string command, std::FILE* out, bool terminal) : state_(std::make_shared<State>())
-{
-    state_->command = std::move(command);
-    state_->out = out;
-    state_->terminal = terminal;
-}
-
-void TerminalProgress::operator()(const std::string& stage, double done)
-{
-    State& s = *state_;
-    const int whole = std::clamp(int(100 * done), 0, 100);
-    const int percent = s.terminal ? whole : whole / 25 * 25;
-    if (stage == s.stage && percent == s.percent) return;
-    s.stage = stage;
-    s.percent = percent;
-    s.shown = true;
-    // a terminal's line: back to its start, and clear what a longer one left; a log's: a line of its own
-    std::fprintf(s.out, "%s%s: making the default volume (once; it is cached): %s %3d %%%s", s.terminal ? "\r" : "", s.command.c_str(),
-                 stage.c_str(), percent, s.terminal ? "\033[K" : "\n");
-}
-
-void TerminalProgress::finish()
-{
-    if (state_->shown && state_->terminal) std::fputc('\n', state_->out);
-    state_->shown = false;
 }
 
 VolumePair user_volume(const std::filesystem::path& volume, const std::filesystem::path& labels)

@@ -7,7 +7,6 @@
 // run would take; the folder's name carries the recipe's version, so a changed recipe is remade.
 #pragma once
 
-#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -33,27 +32,9 @@ std::filesystem::path cache_folder();
 // cannot be written, io::NrrdError naming the file when a cached one cannot be read.
 VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress);
 
-// case_volume's progress on stderr, "<command>: making the default volume (once; it is cached):
-// <stage> NN %". On a terminal, one line rewritten in place when the stage or the whole percent
-// changes; in a log (a pipe, a file: CI's, a user's `2> log`), a line of its own at each stage's
-// 0, 25, 50, 75 and 100 %, with no carriage returns or terminal codes to garble it. Copies (the
-// std::function case_volume keeps) share one state; finish() ends the terminal's line, if any.
-class TerminalProgress {
-public:
-    explicit TerminalProgress(std::string command);  // on stderr, a terminal when isatty says so
-    TerminalProgress(std::string command, std::FILE* out, bool terminal);
-    void operator()(const std::string& stage, double done);
-    void finish();  // after the last update: nothing when nothing was shown
-
-private:
-    struct State {
-        std::string command, stage;
-        std::FILE* out = nullptr;
-        int percent = -1;
-        bool terminal = false, shown = false;
-    };
-    std::shared_ptr<State> state_;
-};
+// What the commands that make the default volume on first use put before its progress's stage,
+// after their own name (TerminalProgress's lead: "echosim run: " + kCaseVolumeProgress).
+inline constexpr const char* kCaseVolumeProgress = "making the default volume (once; it is cached): ";
 
 // The user's volume and labels (empty path: none), NRRD or MetaImage (io::read_volume), read and
 // checked (labels on the volume's grid). The image pipeline reads 8-bit grey and 8-bit tissue codes:
