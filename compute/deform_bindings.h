@@ -6,7 +6,9 @@
 // sideways spread at the end:
 //   - the column starts at the undeformed skin (y = skin_y in the pressed probe's frame, negative
 //     above the face) and ends at the image's depth, which the deformation does not move (the bone
-//     and the deep tissue hardly move: the tissue model's springs are anchored there);
+//     and the deep tissue hardly move: the tissue model's springs are anchored there), or at its
+//     first rigid step (bone), which anchors it as well: what lies below neither moves nor feels
+//     the probe;
 //   - the skin under the face moved skin_shift [mm] along the beam (from the physics snapshot);
 //   - the pressure the probe puts on the skin (its force over the face, from the same snapshot)
 //     reaches depth z below the skin as the stress under a uniformly loaded rectangle in an elastic
@@ -18,10 +20,12 @@
 //     compliance up to a largest strain (skin and fat most, muscle less, bone nothing);
 //   - what the pressure and the lumens leave of the skin's shift (the shift is the simulated
 //     tissue's; the compliances are the image model's) is taken up by the solids too, so the
-//     column's shortening equals the shift and the deep end stays put. Where a lumen closes by more
-//     than that, the remainder is negative: the tissue above and below it sinks and rises into the
-//     space (in truth it also flows in from the sides, which a column cannot show), stretching the
-//     steps near it, the more the nearer (DEFORM_INFLOW_MM);
+//     column's shortening equals the shift and the deep end stays put, past their largest strains
+//     where they cannot take it otherwise (a deep press over little soft tissue: in truth it flows
+//     out to the sides, which a column cannot show; DEFORM_OVERFLOW_MAX). Where a lumen closes by
+//     more than that, the remainder is negative: the tissue above and below it sinks and rises into
+//     the space (in truth it also flows in from the sides), stretching the steps near it, the more
+//     the nearer (DEFORM_INFLOW_MM);
 //   - then, all columns solved, their displacements spread sideways (a second pass): the tissue
 //     above a closing vein sinks with it and drags its neighbours along, over a width growing
 //     with the distance from the lumen (DEFORM_SPREAD), while the walls, the skin and the deep end
@@ -68,6 +72,9 @@ namespace echosim::kernels {
 // of its share) [mm]: per mm the column's lumens close, and at least
 #define DEFORM_INFLOW_PER_MM 0.5f
 #define DEFORM_INFLOW_MM 2.0f
+// the most of what is left of a step's length that it loses to a column's overflow (a remainder
+// the steps' largest strains cannot take: deform_column.h, remainder_level)
+#define DEFORM_OVERFLOW_MAX 0.9f
 // the sideways spread of the columns' displacements (deform_column.h, deform_spread): its standard
 // deviation per mm of distance from a lumen's wall, the skin or the deep end, and its largest [mm];
 // and the closure from which a lumen's walls count (they meet: the spread must not part them)

@@ -11,7 +11,7 @@
 //   float moved_load(uint column, uint boundary) / void moved_store(uint column, uint boundary, float v)
 //                                          how far a step boundary moved down the beam [mm]
 //   vec2 walls_load(uint column, uint boundary) / void walls_store(uint column, uint boundary, vec2 v)
-//                                          its distances [mm] to what fixes it (walk 4), kept as
+//                                          its distances [mm] to what fixes it (walk 5), kept as
 //                                          half floats (packHalf2x16) by both includers
 //                                          (both max_steps + 1 boundaries a column)
 //   void map_store(uint pixel, vec2 v)     (source y [mm], gain [dB]) of pixel = row * columns + column
@@ -25,34 +25,61 @@ bool is_lumen(vec4 w) { return w.x < 0.0f; }
 // that stays open (an artery) and a rigid solid (bone).
 bool holds_shape(vec4 w) { return is_lumen(w) ? w.z < DEFORM_MEETING : w.y == 0.0f; }
 
-// A solid step's strain once the column's two remainders are taken up (deform_column_solve, walk
-// 3): `solved` = (level, direction) of the first (by compliance, w.x) and of the second (by share,
-// w.w), from `stage` 0 (the pressure's strain alone) to 2 (both). Each takes what room the largest
-// strain (w.y) leaves, either way.
+// What a solid step of weight g (compliance, or share) and largest strain `largest` takes of one
+// of the column's remainders [strain] (deform_column_solve, walk 4): at the remainder's `level`,
+// signed by its direction, up to the room its largest strain leaves that way; and past that room,
+// a share of the remainder's `overflow` (signed too) in proportion to its largest strain (the
+// softer, the more) and to what is left of its length that way, so it never reaches nothing. Only
+// a column whose steps are all full overflows (remainder_level); a rigid step (bone) takes none.
+float remainder_strain(float g, float largest, float level, float overflow, float room)
+{
+    return sign(level) * min(g * abs(level), max(room, 0.0f)) + largest * overflow * (room + 1.0f - largest);
+}
+
+// A solid step's strain once the column's two remainders are taken up: `solved` = (level, overflow)
+// of the first (by compliance, w.x) and of the second (by share, w.w), from `stage` 0 (the
+// pressure's strain alone) to 2 (both).
 float solid_strain_after(vec4 w, float stress, vec4 solved, uint stage)
 {
     float strain = solid_strain(w.x, w.y, stress);
-    if (stage > 0u) strain += solved.y * min(w.x * solved.x, w.y - solved.y * strain);
-    if (stage > 1u) strain += solved.w * min(w.w * solved.z, w.y - solved.w * strain);
+    if (stage > 0u) strain += remainder_strain(w.x, w.y, solved.x, solved.y, w.y - sign(solved.x + solved.y) * strain);
+    if (stage > 1u) strain += remainder_strain(w.w, w.y, solved.z, solved.w, w.y - sign(solved.z + solved.w) * strain);
     return strain;
 }
 
-// The level sigma at which stage `stage`'s remainder `amount` [mm] is taken up: sum_k h min(g_k
+// How stage `stage`'s remainder `amount` [mm] is taken up: the level sigma at which sum_k h min(g_k
 // sigma, room_k) = |amount|, g_k the step's weight (compliance, or share), room_k what its largest
 // strain leaves after the stages before. From sigma = 0, each pass solves the linear law with the
 // steps the last sigma filled held full; sigma only grows towards the answer, and reaches it once
 // the filled set stops changing. A pass also finds the lowest level at which a step it left free
 // would fill: a new sigma below it fills none, so the set cannot change and no pass is needed to
 // see that (each pass is a walk over the column: the common case, where no step fills, takes one).
-float remainder_level(uint c, uint steps, float h, float stress, float amount, vec4 solved, uint stage)
+// When the steps' rooms together cannot take the remainder (a deep press over a column of little
+// soft tissue: the sum of the largest strains falls short of the skin's shift), every step is
+// full, and the rest, the overflow, is shared by the steps that are not rigid past their largest
+// strains (remainder_strain), none losing more than DEFORM_OVERFLOW_MAX of what is left of it: in
+// truth that tissue flows out to the sides, which a column cannot show, while the bone and the
+// deep end stay where they are (what no step takes moves them). Returns (level, overflow), both
+// signed by the remainder's direction.
+vec2 remainder_level(uint c, uint steps, float h, float stress, float amount, vec4 solved, uint stage)
 {
     float dir = sign(amount), sigma = 0.0f;
     for (int pass = 0; pass < 16; ++pass) {
         float free_sum = 0.0f, full = 0.0f, fills_at = 3.0e38f;
+        float capacity = 0.0f, last_fill = 0.0f, weights = 0.0f, softest = 0.0f;  // (first pass) for an overflow
         for (uint k = 0u; k < steps; ++k) {
             vec4 w = scratch_load(c, k);
             if (is_lumen(w)) continue;
             float g = stage == 0u ? w.x : w.w, room = w.y - dir * solid_strain_after(w, stress, solved, stage);
+            if (pass == 0 && g > 0.0f) {
+                capacity += max(room, 0.0f) * h;
+                last_fill = max(last_fill, room / g);
+            }
+            if (pass == 0) {
+                weights += w.y * (room + 1.0f - w.y) * h;
+                softest = max(softest, w.y);
+            }
+            room = max(room, 0.0f);
             if (g * sigma >= room) {
                 full += room * h;
             } else {
@@ -60,6 +87,8 @@ float remainder_level(uint c, uint steps, float h, float stress, float amount, v
                 if (g > 0.0f) fills_at = min(fills_at, room / g);
             }
         }
+        if (pass == 0 && abs(amount) >= capacity && weights > 0.0f)
+            return vec2(dir * last_fill, dir * min((abs(amount) - capacity) / weights, DEFORM_OVERFLOW_MAX / softest));
         if (free_sum <= 0.0f) break;  // every step rigid or full: the column cannot take more
         float next = (abs(amount) - full) / free_sum;
         if (next <= sigma) break;
@@ -67,7 +96,7 @@ float remainder_level(uint c, uint steps, float h, float stress, float amount, v
         // within a part in 10^5 of filling counts as filling: the next pass decides it exactly
         if (next < fills_at * 0.99999f) break;
     }
-    return sigma;
+    return vec2(dir * sigma, 0.0f);
 }
 
 // The steps of a column whose skin lies at skin_y: from the skin to the image's depth, as many as the
@@ -86,7 +115,7 @@ void deform_column_solve(uint c, DeformParams p)
 
     // 1. down the column from the skin: each step's tissue, its compliance under the stress that
     //    reaches it, and how much of it a lumen loses to the pressure there. A scratch entry is
-    //    (a, e, 0, 0) for a solid step (compliance x influence [1/kPa], largest strain; walk 3 puts
+    //    (a, e, 0, 0) for a solid step (compliance x influence [1/kPa], largest strain; walk 4 puts
     //    its share of the lumens' change last) and (-1, 0, closure, gain [dB]) for a lumen step,
     //    closing or not (is_lumen).
     float closed = 0.0f;  // [mm]
@@ -95,6 +124,10 @@ void deform_column_solve(uint c, DeformParams p)
     //    paper's linear deformation has no pressure law: its column takes the shift alone)
     float stress = linear ? 0.0f : p.skin_pressure_kpa;
     float pressed = 0.0f;  // [mm]
+    // 3. (in the same walk) the first rigid step (bone) anchors the column, as the tissue model's
+    //    springs are anchored there: what lies below it neither moves nor feels the probe, so the
+    //    tissue above takes up the whole shift and the bone stays where it is
+    bool anchored = false;
     for (uint k = 0u; k < steps; ++k) {
         float depth = (float(k) + 0.5f) * h;
         // the tissue at the step's quarters: a lumen in either makes it a lumen step, so where
@@ -104,26 +137,26 @@ void deform_column_solve(uint c, DeformParams p)
         TissueMechanics t = deform_tissue(linear ? 0u : deform_label(vec3(upper)));
         TissueMechanics t_lower = deform_tissue(linear ? 0u : deform_label(vec3(lower)));
         t = is_lumen_tissue(t) || !is_lumen_tissue(t_lower) ? t : t_lower;
+        anchored = anchored || (!is_lumen_tissue(t) && t.max_strain == 0.0f);
         float influence = linear ? 1.0f : face_influence(x, depth, p.face_width_mm, p.face_length_mm);
-        float closure = lumen_closure(t, p.skin_pressure_kpa * influence, p.pulse);
+        float closure = anchored ? 0.0f : lumen_closure(t, p.skin_pressure_kpa * influence, p.pulse);
         closed += closure * h;
         changing = changing || closure != 0.0f;
-        vec4 w = is_lumen_tissue(t) ? vec4(-1.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
-                                 : vec4(t.compliance * influence, t.max_strain, 0.0f, 0.0f);
+        vec4 w = anchored ? vec4(0.0f)
+               : is_lumen_tissue(t) ? vec4(-1.0f, 0.0f, closure, closure_gain_db(closure, h, t, p.tgc_db_cm_mhz, p.frequency_mhz))
+                                    : vec4(t.compliance * influence, t.max_strain, 0.0f, 0.0f);
         scratch_store(c, k, w);
         if (!is_lumen(w)) pressed += solid_strain(w.x, w.y, stress) * h;
     }
 
-    // 3. the column's two remainders. First, what the pressure leaves of the skin's shift (from
+    // 4. the column's two remainders. First, what the pressure leaves of the skin's shift (from
     //    the simulated tissue), taken up by the solids in series by their compliances, as though no
     //    lumen changed. Then what the lumens lose (or gain) of their length: the tissue around
     //    them sinks and rises into the space, stretching the steps near it (the flow from the
     //    sides, which a column cannot show), each step's share halving every inflow_mm from the
     //    nearest lumen that changes, above and below alike, whatever the tissue.
     vec4 solved = vec4(0.0f);
-    float first = shift - pressed;
-    solved.x = remainder_level(c, steps, h, stress, first, solved, 0u);
-    solved.y = sign(first);
+    solved = vec4(remainder_level(c, steps, h, stress, shift - pressed, solved, 0u), 0.0f, 0.0f);
     if (changing) {
         float inflow_mm = max(DEFORM_INFLOW_MM, DEFORM_INFLOW_PER_MM * abs(closed));
         float since = 1e9f;  // [mm] from the last changing lumen step above
@@ -138,11 +171,10 @@ void deform_column_solve(uint c, DeformParams p)
             until = w.z != 0.0f ? 0.0f : until + h;
             if (!is_lumen(w)) scratch_store(c, k - 1u, vec4(w.x, w.y, 0.0f, exp2(-min(w.w, until) / inflow_mm)));
         }
-        solved.z = remainder_level(c, steps, h, stress, -closed, solved, 1u);
-        solved.w = -sign(closed);
+        solved = vec4(solved.x, solved.y, remainder_level(c, steps, h, stress, -closed, solved, 1u));
     }
 
-    // 4. each step boundary's displacement down the beam [mm] and distances [mm] to the column's
+    // 5. each step boundary's displacement down the beam [mm] and distances [mm] to the column's
     //    nearest lumen whose walls (nearly) meet and to its nearest step that holds its shape
     //    (moved_store, walls_store; past the column's last step, the last's), for the second pass
     float moved = shift;

@@ -126,6 +126,45 @@ TEST(DeformCpu, AProbeLiftedOffTheSkinLeavesTheImageUndeformed)
     }
 }
 
+TEST(DeformCpu, ABoneUnderTooLittleSoftTissueToTakeThePressStaysPut)
+{
+    // 16 mm of muscle over a 10 mm slab of bone, muscle again below it; the skin 12 mm above the
+    // face pressed onto it: more than the muscle's largest strain (half its thickness, 8 mm) can
+    // take. The bone is held (the tissue model's springs are anchored there), and shields what lies
+    // below it: every row at or below its top maps to itself, and the muscle above it, all of it,
+    // fills the 4 mm between the face and the bone.
+    Flat f;
+    const float skin = -12.0f, bone_top = skin + 16.0f, bone_bottom = bone_top + 10.0f;
+    io::Volume labels = f.grid;
+    for (std::size_t k = 0; k < labels.size[2]; ++k)
+        for (std::size_t j = 0; j < labels.size[1]; ++j)
+            for (std::size_t i = 0; i < labels.size[0]; ++i) {
+                const double y = labels.index_to_world(glm::dvec3(double(i), double(j), double(k))).y;
+                const bool bone = y >= bone_top && y < bone_bottom;
+                labels.data[labels.index(i, j, k)] = std::uint8_t(bone ? Tissue::bone_cortex : Tissue::muscle);
+            }
+    const TissueTable tissues = tissue_mechanics({});
+    ASSERT_LT(tissues[int(Tissue::muscle)].max_strain * 16.0f, -skin);  // the premise: the muscle alone cannot take it
+    EchoFrame frame;
+    frame.columns.assign(f.plane.columns, {skin, -skin});
+    frame.skin_pressure_kpa = 40;
+    const KernelParams k = make_kernel_params(f.grid, f.plane, frame, {}, {}, true);
+    const auto map = deform_cpu(&labels, frame.columns, tissues, k.deform);
+    for (std::uint32_t c : {0u, 40u, 79u}) {  // at the face's edges too, where less of the pressure reaches
+        double last = -1e9;
+        for (std::uint32_t r = 0; r < f.plane.rows; ++r) {
+            const double y = (r + 0.5) * f.plane.pixel_y_mm(), source = map[r * f.plane.columns + c].x;
+            if (y >= bone_top + 0.5) EXPECT_NEAR(source, y, 0.05) << "column " << c << ", row " << r;
+            if (y < bone_top - 0.5) EXPECT_TRUE(source >= skin && source < bone_top) << "column " << c << ", row " << r << ": " << source;
+            EXPECT_GE(source, last) << "column " << c << ", row " << r;  // nothing folded
+            last = source;
+        }
+        // the first row (0.25 mm under the face) shows the skin: 16 mm in 4 mm is 1 mm of tissue in
+        // 0.25 mm of image on average, so none of the muscle went off the top
+        EXPECT_LT(map[c].x, skin + 1.5) << "column " << c;
+    }
+}
+
 // Muscle with a vein's lumen 10 mm across, centred 20 mm under the skin, pressed 6 mm in and hard
 // enough to close it: the map of the Flat plane (0.5 mm pixels and columns).
 struct PressedVein : Flat {
