@@ -1,6 +1,8 @@
 #include "app/terminal_progress.hpp"
 
 #include <algorithm>
+#include <utility>
+
 #include <unistd.h>
 
 namespace echosim::app {
