@@ -70,16 +70,16 @@ vec2 remainder_level(uint c, uint steps, float h, float stress, float amount, ve
         for (uint k = 0u; k < steps; ++k) {
             vec4 w = scratch_load(c, k);
             if (is_lumen(w)) continue;
-            float g = stage == 0u ? w.x : w.w, room = w.y - dir * solid_strain_after(w, stress, solved, stage);
-            if (pass == 0 && g > 0.0f) {
-                capacity += max(room, 0.0f) * h;
-                last_fill = max(last_fill, room / g);
-            }
-            if (pass == 0) {
-                weights += w.y * (room + 1.0f - w.y) * h;
+            float g = stage == 0u ? w.x : w.w, strain = solid_strain_after(w, stress, solved, stage);
+            float room = max(w.y - dir * strain, 0.0f);
+            if (pass == 0) {  // what an overflow is shared by (remainder_strain)
+                if (g > 0.0f) {
+                    capacity += room * h;
+                    last_fill = max(last_fill, room / g);
+                }
+                weights += w.y * (1.0f - dir * strain) * h;  // the largest strain, and what is left of the length that way
                 softest = max(softest, w.y);
             }
-            room = max(room, 0.0f);
             if (g * sigma >= room) {
                 full += room * h;
             } else {
