@@ -85,6 +85,10 @@ struct DeviceEvent {
 };
 const char* to_string(DeviceEvent::Kind k);
 
+// How long an arm holds the force it was last sent [s]: a loop that stopped or stalled for 20 of its
+// ticks no longer pushes on the user's hand.
+inline constexpr double kForceHoldS = 0.02;
+
 class Device {
 public:
     virtual ~Device() = default;
@@ -96,7 +100,10 @@ public:
     // last pose, marked not connected).
     virtual bool read(double t_s, DeviceSample& out) noexcept = 0;
     // Haptic thread. The force on the user's hand, in the device's frame (workspace axes) [N],
-    // already within capabilities().max_force_N. A device without force feedback ignores it.
+    // already within capabilities().max_force_N. A device without force feedback ignores it. An
+    // arm's driver cuts it to its limit again (a NaN sends nothing), sends it from its next servo
+    // tick on (so a zero sent on stop takes effect within a millisecond), replaces a force not
+    // renewed for kForceHoldS by zero, and sends zero force when destroyed.
     virtual void write_force(const Eigen::Vector3d& force_N) noexcept = 0;
 
     // Driver thread. Connection changes and notes since the last call, oldest first (appended).

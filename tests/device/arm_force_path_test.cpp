@@ -1,0 +1,57 @@
+// The whole force path with the simulated arm standing in for a real one, lock-step: the haptic loop
+// renders the tissue's push from the physics' local model and sends it to the arm, the arm's handle
+// moves under it and under the hand holding it, and its pose comes back as the probe's. A hand held
+// 15 mm below the skin does not get there: the handle settles where the coupling's pull equals the
+// force the loop sends, and that force is what the physics says the thigh pushes back with.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "device/simulated_arm.hpp"
+#include "haptics/haptic_loop.hpp"
+#include "physics/physics_fixture.hpp"
+
+namespace echosim::device {
+namespace {
+
+TEST(ArmForcePath, TheHandleSettlesWhereTheHandsPullMeetsTheTissuesPush)
+{
+    physics::PhysicsOptions po;
+    po.steps_per_publish = 10;
+    physics::PhysicsRunner physics(test::shipped_model(3), po);
+    const haptics::ProbeMapping mapping(test::leg());  // the workspace origin 20 mm above the skin
+
+    SimulatedArmOptions o;
+    o.servo = SimulatedArmOptions::Servo::lock_step;
+    o.hand.kind = HandScript::Kind::hold;
+    o.hand.hold_mm = Eigen::Vector3d(0, -35, 0);  // 15 mm into the skin, were nothing pushing back
+    o.arm.coulomb_N = 0;                           // no friction band: the balance is exact
+    auto arm = std::make_shared<SimulatedArm>(o);
+    haptics::HapticLoop loop(physics, arm, mapping);
+
+    double last_y = 0;
+    for (int i = 1; i <= 3000; ++i) {
+        const double t = i * 1e-3;
+        loop.tick(t);
+        physics.step_to(t);
+        last_y = loop.latest().device.position.y();
+    }
+    const haptics::HapticSample& s = loop.latest();
+    const Eigen::Vector3d felt = mapping.to_device(s.force.world_N, Control::workspace);  // what the arm was sent
+    ASSERT_GT(felt.y(), 0.5) << "the thigh pushes the handle up";
+    // pressed in, but less than the hand's 15 mm: the tissue held the handle back
+    const double press_mm = -20.0 - last_y;
+    EXPECT_GT(press_mm, 1.0);
+    EXPECT_LT(press_mm, 15.0);
+    // at rest the coupling's pull balances the force sent: k (y - y_hand) = F_y
+    EXPECT_NEAR(o.arm.coupling_N_per_mm * (last_y - o.hand.hold_mm.y()), felt.y(), 0.02);
+    EXPECT_LT((arm->applied_force() - felt).norm(), 1e-9);
+    // and that force is the physics' own, within the arm's limit
+    EXPECT_LE(s.force.along_N, arm->capabilities().max_force_N + 1e-12);
+    if (s.force.along_N < arm->capabilities().max_force_N) {
+        EXPECT_NEAR(s.force.along_N, s.physics_force_N, 0.05 * s.physics_force_N + 0.02);
+    }
+}
+
+}  // namespace
+}  // namespace echosim::device
