@@ -69,6 +69,17 @@ int run_window(const RunArgs& args)
         std::fprintf(stderr, "echosim run: --igtl %s: a port number in 1..65535 (without one: %d)\n", args.igtl_port.c_str(), igtl::kDefaultPort);
         return kExitBadInput;
     }
+    if (!args.igtl_bind.empty()) {
+        if (args.igtl_port.empty()) {
+            std::fprintf(stderr, "echosim run: --igtl-bind %s: give --igtl [PORT] too (the address is where the link listens)\n",
+                         args.igtl_bind.c_str());
+            return kExitBadInput;
+        }
+        if (const std::string why = igtl::bind_address_error(args.igtl_bind); !why.empty()) {
+            std::fprintf(stderr, "echosim run: --igtl-bind %s\n", why.c_str());
+            return kExitBadInput;
+        }
+    }
     const gpu::DisplayProbe display = gpu::probe_display();
     if (!display.available) {
         std::fprintf(stderr,
@@ -88,14 +99,18 @@ int run_window(const RunArgs& args)
     std::unique_ptr<igtl::Server> link;
     if (igtl_port != 0) {
         try {
-            link = std::make_unique<igtl::Server>(igtl::ServerOptions{.port = igtl_port});
+            link = std::make_unique<igtl::Server>(igtl::ServerOptions{.port = igtl_port, .bind = args.igtl_bind});
         } catch (const igtl::ServerError& e) {
             std::fprintf(stderr, "echosim run: %s (is a PlusServer or another echosim serving it?); choose another with --igtl PORT\n", e.what());
             return kExitBadInput;
         }
-        std::printf("echosim run: OpenIGTLink: serving %s, %s and %s on port %d of every interface; in 3D Slicer, connect "
-                    "OpenIGTLinkIF as a client to this machine, port %d\n",
-                    igtl::kImageName, igtl::kProbeToReferenceName, igtl::kImageToReferenceName, link->port(), link->port());
+        std::string where;
+        for (const std::string& address : link->listening()) where += (where.empty() ? "" : " and ") + address;
+        std::printf("echosim run: OpenIGTLink: serving %s, %s and %s on %s (%s); in 3D Slicer, connect OpenIGTLinkIF as a client "
+                    "to %s, port %d\n",
+                    igtl::kImageName, igtl::kProbeToReferenceName, igtl::kImageToReferenceName, where.c_str(),
+                    args.igtl_bind.empty() ? "this machine alone; --igtl-bind ADDRESS serves others" : "no authentication: anyone who can reach it",
+                    args.igtl_bind.empty() ? "localhost" : "this machine", link->port());
     }
 
     session::SessionOptions session_options{.clock = session::Clock::real_time};

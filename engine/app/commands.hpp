@@ -71,6 +71,9 @@ struct RunArgs {
     // --igtl [PORT]: serve the live image and probe over OpenIGTLink on this port, as written
     // (validated by run_window: 1..65535); empty: no link
     std::string igtl_port;
+    // --igtl-bind ADDRESS: where the link listens (an IPv4 or IPv6 literal, validated by
+    // run_window); empty: the loopback interface, this machine alone (igtl/server.hpp)
+    std::string igtl_bind;
 };
 int run_window(const RunArgs& args);
 

@@ -83,6 +83,10 @@ int main(int argc, char** argv)
         ->expected(0, 1)
         ->default_str(igtl_port)
         ->type_name("[PORT]");
+    run_cmd->add_option("--igtl-bind", run.igtl_bind,
+                        "with --igtl: listen on this address, an IPv4 or IPv6 literal (0.0.0.0 or :: for every interface, so 3D Slicer on "
+                        "another machine can connect; the link has no authentication); default: the loopback interface, this machine alone")
+        ->type_name("ADDRESS");
     add_gpu_options(run_cmd, run.gpu);
 
     MeasureArgs measure;

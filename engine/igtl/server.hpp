@@ -25,10 +25,26 @@
 // whose send fails or that closed its end. What clients send is read and discarded (PlusServer
 // answers commands; we have none).
 //
-// Binding: all IPv4 interfaces by default, as PlusServer does (Slicer often runs on another
-// machine), or the loopback interface alone (ServerOptions::loopback_only; the tests use it). The
-// address is reused (SO_REUSEADDR), so a restart right after a run does not find the port held by
-// connections still closing; a port another program listens on is refused, with the port named.
+// Binding: the loopback interface by default, 127.0.0.1 and ::1 (where the host has IPv6), so only
+// this machine can connect: the link has no authentication, and PlusServer's habit of listening on
+// every interface hands the probe's images to anyone on the network. Serving 3D Slicer on another
+// machine is asked for by address (ServerOptions::bind, `--igtl-bind`): an IPv4 or IPv6 literal,
+// "0.0.0.0" for every IPv4 interface, "::" for every interface of both families. Listening on both
+// loopback families also means a port another program holds on either is found: a PlusServer on
+// [::1]:18944 would otherwise take the clients that resolve "localhost" to ::1 while we served
+// 127.0.0.1 alone. The address is reused (SO_REUSEADDR), so a restart right after a run does not find
+// the port held by connections still closing; a port another program listens on, on any of the
+// addresses, is refused with the port and the address named.
+//
+// What one remote host can hold: at most max_clients_per_host connections from one address (an
+// IPv4 client reaching "::" counts as its IPv4 address) and max_clients in all; more are accepted
+// and closed at once, said as a refusal. Each client costs at most one packed frame in memory (the
+// one it is being sent, shared with the others; frames it has not taken are skipped, never
+// queued) plus the kernel's socket buffer, and a client that takes nothing for `stall_timeout` is
+// dropped. What a client sends is read and discarded, at most 64 KiB a client each round of the
+// network thread, and at most 32 connections are accepted a round, so neither a flood of bytes nor
+// one of connections keeps the thread from the other clients (server.cpp: kMaxDrainBytes,
+// kMaxAcceptsPerRound).
 //
 // stop() is prompt: the wake-up ends the network thread's poll at once; clients still connected are
 // closed.
@@ -49,11 +65,17 @@
 namespace echosim::igtl {
 
 struct ServerOptions {
-    int port = kDefaultPort;  // 0: any free port (port() says which)
-    bool loopback_only = false;
+    int port = kDefaultPort;  // 0: any free port (port() says which; the same on every address)
+    // where to listen: "" the loopback interface (127.0.0.1 and ::1), this machine alone; else one
+    // IPv4 or IPv6 literal ("0.0.0.0": every IPv4 interface; "::": every interface, both families)
+    std::string bind;
     std::chrono::milliseconds stall_timeout{2000};  // a client taking no data this long is dropped
-    int max_clients = 16;                           // more are accepted and closed at once
+    int max_clients = 16;                           // in all; more are accepted and closed at once
+    int max_clients_per_host = 4;                   // from one remote address; more likewise
 };
+
+// "" when `address` can be ServerOptions::bind (an IPv4 or IPv6 literal), else why it cannot.
+std::string bind_address_error(const std::string& address);
 
 // The port cannot be served (in use, not permitted, ...): what() names the port and the reason.
 class ServerError : public std::runtime_error {
@@ -80,13 +102,16 @@ struct ServerStats {
 
 class Server {
 public:
-    // Binds, listens and starts the network thread. Throws ServerError naming the port.
+    // Binds, listens and starts the network thread. Throws ServerError naming the port (and the
+    // address that could not be had, or the bind address that is none).
     explicit Server(const ServerOptions& options = {});
     ~Server();
     Server(const Server&) = delete;
     Server& operator=(const Server&) = delete;
 
     int port() const { return port_; }  // the port served (the one asked for, or the free one chosen for 0)
+    // where it listens, address and port: "127.0.0.1:18944", "[::1]:18944"
+    const std::vector<std::string>& listening() const { return listening_; }
 
     // Hands the frame to the network thread, which sends it (or a newer one) to every client. Never
     // blocks on the network; copies the pixels (no allocation once the buffers have the frame's
@@ -110,7 +135,8 @@ private:
 
     ServerOptions options_;
     int port_ = 0;
-    int listen_fd_ = -1;
+    std::vector<int> listen_fds_;
+    std::vector<std::string> listening_;
     int wake_fd_ = -1;  // eventfd: publish() and stop() wake the network thread
     TripleBuffer<Published> latest_;
     std::uint64_t sequence_ = 0;  // the caller's: the last frame published

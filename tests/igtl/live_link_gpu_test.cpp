@@ -48,8 +48,7 @@ TEST(IgtlLiveLink, PublishesTheImageTheGpuDrewWhereItsProbeWas)
     const echo::ImagePlane& plane = s.image_plane();
 
     ServerOptions options;
-    options.port = 0;
-    options.loopback_only = true;
+    options.port = 0;  // on the loopback interface, the default
     Server server(options);
     test::IgtlClient client(server.port());
     ASSERT_TRUE(client.ok());

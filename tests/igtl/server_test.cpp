@@ -4,7 +4,8 @@
 // types, image size, scalar type, spacing, pixels, and every matrix in Reference (RAS). Then the
 // clients' comings and goings: two clients, one gone mid-message, one that stops reading; the other
 // keeps being served, publish() never waits; stop() is prompt with a client still connected.
-// Every wait is bounded.
+// Where it listens (the loopback interface of both families unless told), a port another program
+// holds on IPv6 alone, and what one remote host can hold. Every wait is bounded.
 #include "igtl/server.hpp"
 
 #include <algorithm>
@@ -18,6 +19,11 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -60,8 +66,7 @@ LiveFrame test_frame(int number = 0, std::uint32_t columns = kColumns, std::uint
 ServerOptions loopback()
 {
     ServerOptions o;
-    o.port = 0;
-    o.loopback_only = true;
+    o.port = 0;  // and the default bind: the loopback interface
     return o;
 }
 
@@ -326,6 +331,202 @@ TEST(IgtlServer, NamesThePortItCannotServe)
     ServerOptions out_of_range = loopback();
     out_of_range.port = 70000;
     EXPECT_THROW(Server{out_of_range}, ServerError);
+}
+
+// A TCP socket of `family` (AF_INET, AF_INET6) on `address`:`port`, listening (listen) or
+// connected to it; -1 when the host cannot (no IPv6). Closed by its owner.
+int raw_socket(int family, const char* address, int port, bool listen, bool v6only = true)
+{
+    const int fd = ::socket(family, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) return -1;
+    sockaddr_storage a{};
+    socklen_t length = 0;
+    if (family == AF_INET) {
+        auto& v4 = reinterpret_cast<sockaddr_in&>(a);
+        v4.sin_family = AF_INET;
+        v4.sin_port = htons(std::uint16_t(port));
+        ::inet_pton(AF_INET, address, &v4.sin_addr);
+        length = sizeof v4;
+    } else {
+        auto& v6 = reinterpret_cast<sockaddr_in6&>(a);
+        v6.sin6_family = AF_INET6;
+        v6.sin6_port = htons(std::uint16_t(port));
+        ::inet_pton(AF_INET6, address, &v6.sin6_addr);
+        length = sizeof v6;
+        const int only = v6only ? 1 : 0;
+        ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &only, sizeof only);
+    }
+    const bool ok = listen ? ::bind(fd, reinterpret_cast<sockaddr*>(&a), length) == 0 && ::listen(fd, 4) == 0
+                           : ::connect(fd, reinterpret_cast<sockaddr*>(&a), length) == 0;
+    if (!ok) {
+        ::close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+int bound_port(int fd)
+{
+    sockaddr_storage a{};
+    socklen_t length = sizeof a;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
+    return a.ss_family == AF_INET ? ntohs(reinterpret_cast<sockaddr_in&>(a).sin_port) : ntohs(reinterpret_cast<sockaddr_in6&>(a).sin6_port);
+}
+
+bool host_has_ipv6_loopback()
+{
+    const int fd = raw_socket(AF_INET6, "::1", 0, true);
+    if (fd < 0) return false;
+    ::close(fd);
+    return true;
+}
+
+// the server's events until `count` of them came (or 5 s went)
+std::vector<ServerEvent> wait_for_events(Server& server, std::size_t count)
+{
+    std::vector<ServerEvent> events;
+    for (const auto until = Clock::now() + 5s; events.size() < count && Clock::now() < until;) {
+        server.events(events);
+        if (events.size() < count) std::this_thread::sleep_for(5ms);
+    }
+    return events;
+}
+
+TEST(IgtlServer, ListensOnTheLoopbackInterfaceOfBothFamiliesByDefault)
+{
+    Server server(loopback());
+    const std::string port = std::to_string(server.port());
+    if (!host_has_ipv6_loopback()) {
+        EXPECT_EQ(server.listening(), std::vector<std::string>{"127.0.0.1:" + port});
+        GTEST_SKIP() << "this host has no IPv6 loopback";
+    }
+    EXPECT_EQ(server.listening(), (std::vector<std::string>{"127.0.0.1:" + port, "[::1]:" + port}));
+    // a client on each family, both served
+    IgtlClient v4(server.port());
+    ASSERT_TRUE(v4.ok());
+    const int v6 = raw_socket(AF_INET6, "::1", server.port(), false);
+    ASSERT_GE(v6, 0);
+    const std::vector<ServerEvent> events = wait_for_events(server, 2);
+    ASSERT_EQ(events.size(), 2u);
+    std::vector<std::string> hosts;
+    for (const ServerEvent& e : events) {
+        EXPECT_EQ(e.kind, ServerEvent::Kind::connected) << e.peer << ": " << e.reason;
+        hosts.push_back(e.peer.substr(0, e.peer.rfind(':')));
+    }
+    std::sort(hosts.begin(), hosts.end());
+    EXPECT_EQ(hosts, (std::vector<std::string>{"127.0.0.1", "[::1]"}));
+    ::close(v6);
+}
+
+TEST(IgtlServer, FindsThePortTakenOnIpv6Alone)
+{
+    if (!host_has_ipv6_loopback()) GTEST_SKIP() << "this host has no IPv6 loopback";
+    // another program serving [::1]:P, IPv6 only (127.0.0.1:P is free): clients that resolve
+    // "localhost" to ::1 would reach it, not us
+    const int held = raw_socket(AF_INET6, "::1", 0, true);
+    ASSERT_GE(held, 0);
+    ServerOptions same = loopback();
+    same.port = bound_port(held);
+    try {
+        Server second(same);
+        FAIL() << "served port " << same.port << " while another program listens on [::1]:" << same.port;
+    } catch (const ServerError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("[::1]:" + std::to_string(same.port)), std::string::npos) << what;
+        EXPECT_NE(what.find("in use"), std::string::npos) << what;
+    }
+    ::close(held);
+    // and on every interface, both families ([::], dual stack): refused at 127.0.0.1 already
+    const int everywhere = raw_socket(AF_INET6, "::", 0, true, false);
+    ASSERT_GE(everywhere, 0);
+    same.port = bound_port(everywhere);
+    EXPECT_THROW(Server{same}, ServerError);
+    ::close(everywhere);
+    // and port 0 finds a port free on both
+    Server any(loopback());
+    EXPECT_EQ(any.listening().size(), 2u);
+}
+
+TEST(IgtlServer, ListensWhereItIsToldAndRefusesWhatIsNoAddress)
+{
+    EXPECT_EQ(bind_address_error("0.0.0.0"), "");
+    EXPECT_EQ(bind_address_error("::"), "");
+    EXPECT_EQ(bind_address_error("192.168.1.20"), "");
+    EXPECT_EQ(bind_address_error("fe80::1"), "");
+    for (const char* bad : {"localhost", "", "1.2.3", "256.1.1.1", "::1%lo", "127.0.0.1:18944"})
+        EXPECT_NE(bind_address_error(bad).find("not an IPv4 or IPv6 address"), std::string::npos) << bad;
+
+    ServerOptions v4 = loopback();
+    v4.bind = "127.0.0.1";
+    Server only_v4(v4);
+    EXPECT_EQ(only_v4.listening(), std::vector<std::string>{"127.0.0.1:" + std::to_string(only_v4.port())});
+
+    ServerOptions bad = loopback();
+    bad.bind = "localhost";
+    try {
+        Server none(bad);
+        FAIL() << "listened on 'localhost'";
+    } catch (const ServerError& e) {
+        EXPECT_NE(std::string(e.what()).find("'localhost' is not an IPv4 or IPv6 address"), std::string::npos) << e.what();
+    }
+
+    if (!host_has_ipv6_loopback()) GTEST_SKIP() << "this host has no IPv6";
+    // "::": every interface, both families; an IPv4 client is named by its IPv4 address
+    ServerOptions all = loopback();
+    all.bind = "::";
+    Server everywhere(all);
+    EXPECT_EQ(everywhere.listening(), std::vector<std::string>{"[::]:" + std::to_string(everywhere.port())});
+    IgtlClient client(everywhere.port());
+    ASSERT_TRUE(client.ok());
+    const std::vector<ServerEvent> events = wait_for_events(everywhere, 1);
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].kind, ServerEvent::Kind::connected);
+    EXPECT_EQ(events[0].peer.rfind("127.0.0.1:", 0), 0u) << events[0].peer;
+}
+
+TEST(IgtlServer, LimitsTheClientsOfOneHostAndInAll)
+{
+    ServerOptions options = loopback();
+    options.max_clients_per_host = 2;
+    options.max_clients = 3;
+    Server server(options);
+    server.publish(test_frame());
+    IgtlClient a(server.port()), b(server.port()), c(server.port());
+    ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+    std::vector<ServerEvent> events = wait_for_events(server, 3);
+    ASSERT_EQ(events.size(), 3u);
+    int connected = 0;
+    std::string refusal;
+    for (const ServerEvent& e : events) {
+        connected += e.kind == ServerEvent::Kind::connected;
+        if (e.kind == ServerEvent::Kind::disconnected) refusal = e.reason;
+    }
+    EXPECT_EQ(connected, 2);
+    EXPECT_EQ(refusal, "refused: already 2 clients from 127.0.0.1");
+    EXPECT_EQ(server.stats().clients, 2);
+    // the two kept are served; the one refused finds its connection closed
+    FrameSet set;
+    IgtlMessage m;
+    int got = 0;
+    got += receive_set(a, set);
+    got += receive_set(b, set);
+    got += receive_set(c, set);
+    EXPECT_EQ(got, 2) << "two clients of the three served";
+
+    if (!host_has_ipv6_loopback()) GTEST_SKIP() << "this host has no IPv6: the limit in all is not tried";
+    // another address (::1) may connect, up to the limit in all
+    const int v6 = raw_socket(AF_INET6, "::1", server.port(), false);
+    const int v6_more = raw_socket(AF_INET6, "::1", server.port(), false);
+    ASSERT_GE(v6, 0);
+    ASSERT_GE(v6_more, 0);
+    events = wait_for_events(server, 2);
+    ASSERT_EQ(events.size(), 2u);
+    EXPECT_EQ(events[0].kind, ServerEvent::Kind::connected);
+    EXPECT_EQ(events[1].kind, ServerEvent::Kind::disconnected);
+    EXPECT_EQ(events[1].reason, "refused: already 3 clients");
+    EXPECT_EQ(server.stats().clients, 3);
+    ::close(v6);
+    ::close(v6_more);
 }
 
 TEST(IgtlServer, RefusesFramesThatDoNotHoldTogether)
