@@ -20,6 +20,10 @@ int run_fit(const FitArgs& args)
         return kExitBadInput;
     }
     if (!output_path_usable("fit", "--out", args.out)) return kExitBadInput;
+    std::vector<NamedPath> outputs{{"--out", args.out}};
+    if (!args.report.empty())
+        for (const char* file : fit::kReportFiles) outputs.push_back({"--report's " + std::string(file), args.report / file});
+    if (!outputs_distinct("fit", outputs, {{"--data", args.data}})) return kExitBadInput;
 
     fit::FitOptions options;
     options.method = args.method == "steepest" ? fit::Method::steepest_descent : fit::Method::levenberg_marquardt;

@@ -30,8 +30,10 @@ int run_phantom(const PhantomArgs& args)
         std::fprintf(stderr, "echosim phantom: --case: %s\n", e.what());
         return kExitBadInput;
     }
-    if (!output_path_usable("phantom", "--out", args.out) ||
-        (!args.labels.empty() && !output_path_usable("phantom", "--labels", args.labels)))
+    const auto label_path = label_sweep_path(args.out);
+    if (!output_path_usable("phantom", "--out", args.out) || !output_path_usable("phantom", "--out's label sweep", label_path) ||
+        (!args.labels.empty() && !output_path_usable("phantom", "--labels", args.labels)) ||
+        !outputs_distinct("phantom", {{"--out", args.out}, {"--out's label sweep", label_path}, {"--labels", args.labels}}, {}))
         return kExitBadInput;
     const scene::LegModel leg;
     const echo::Phantom phantom(leg, which);
@@ -48,7 +50,6 @@ int run_phantom(const PhantomArgs& args)
     // the frames' tissue labels, a sweep of their own beside it, for reconstructing the labels
     io::Sweep labels = sweep.sweep;
     labels.pixels = sweep.labels;
-    const auto label_path = label_sweep_path(args.out);
 
     io::Volume map;
     if (!args.labels.empty()) {

@@ -117,12 +117,39 @@ std::filesystem::path labels_path(const std::filesystem::path& out)
     return p;
 }
 
+// The files that writing `out` makes: the file itself and, for a detached MetaImage (.mhd), its
+// data file beside it (io/metaimage.hpp).
+std::vector<std::filesystem::path> written_files(const std::filesystem::path& out, bool compressed)
+{
+    std::vector<std::filesystem::path> files{out};
+    if (io::text::lower(out.extension().string()) == ".mhd") files.push_back(std::filesystem::path(out).replace_extension(compressed ? ".zraw" : ".raw"));
+    return files;
+}
+
+// Whether the outputs can be written as asked, checked before any work: each usable, none the
+// same file as another or as an input (the sweep, its labels' sweep, the configuration).
+bool outputs_checked(const ReconstructArgs& args)
+{
+    const std::filesystem::path label_sweep = label_sweep_path(args.sweep);
+    std::error_code ec;
+    const bool labelled = std::filesystem::exists(label_sweep, ec);
+    std::vector<NamedPath> outputs;
+    for (const auto& f : written_files(args.out, args.gzip)) outputs.push_back({f == args.out ? "--out" : "--out's data file", f});
+    if (labelled)
+        for (const auto& f : written_files(labels_path(args.out), true))
+            outputs.push_back({f == labels_path(args.out) ? "--out's labels" : "--out's labels' data file", f});
+    for (const NamedPath& o : outputs)
+        if (!output_path_usable("reconstruct", o.option.c_str(), o.path)) return false;
+    return outputs_distinct("reconstruct", outputs,
+                            {{"--sweep", args.sweep}, {"--sweep's labels", labelled ? label_sweep : std::filesystem::path()}, {"--config", args.config}});
+}
+
 }  // namespace
 
 int run_reconstruct(const ReconstructArgs& args)
 {
     using clock = std::chrono::steady_clock;
-    if (!output_path_usable("reconstruct", "--out", args.out)) return kExitBadInput;
+    if (!outputs_checked(args)) return kExitBadInput;
     if (const std::string ext = io::text::lower(args.out.extension().string()); ext != ".nrrd" && ext != ".mha" && ext != ".mhd") {
         std::fprintf(stderr, "echosim reconstruct: --out %s: write a volume as .nrrd, .mha or .mhd\n", args.out.c_str());
         return kExitBadInput;
@@ -232,10 +259,12 @@ int run_reconstruct(const ReconstructArgs& args)
         std::fprintf(stderr, "echosim reconstruct: %s (nothing written; files already there are as they were)\n", e.what());
         return kExitFailure;
     }
-    // an earlier run's labels beside the new volume would be taken for its own
+    // an earlier run's labels beside the new volume could be taken for its own; they are not this
+    // command's to delete, so it says so
     std::error_code ec;
-    if (!with_labels && std::filesystem::is_regular_file(lp, ec) && std::filesystem::remove(lp, ec))
-        std::printf("echosim reconstruct: removed %s: it labelled an earlier volume of that name\n", lp.c_str());
+    if (!with_labels && std::filesystem::exists(lp, ec))
+        std::fprintf(stderr, "echosim reconstruct: warning: %s is not this volume's labels (the sweep has none); left as it was\n",
+                     lp.c_str());
     std::printf("echosim reconstruct: %zux%zux%zu voxels (%llu MiB while working) in %s\n", volume.size[0], volume.size[1],
                 volume.size[2], static_cast<unsigned long long>(r->memory_bytes() >> 20), args.out.c_str());
     std::printf("echosim reconstruct: %zu frames in %.2f s (%.0f frames/s), %.1f %% of voxels hit", inserted, insert_s,

@@ -48,7 +48,8 @@ void apply_camera(const std::string& text, DefaultScene& scene)
 int run_render(const RenderArgs& args)
 {
     // check what the user gave before spending time on Vulkan
-    if (!output_path_usable("render", "--out", args.out)) return kExitBadInput;
+    if (!output_path_usable("render", "--out", args.out) || !outputs_distinct("render", {{"--out", args.out}}, {{"--model", args.model}}))
+        return kExitBadInput;
     if (std::uint64_t(args.width) * args.height > kMaxImagePixels) {
         std::fprintf(stderr, "echosim render: --width %u --height %u: more than %llu pixels (7680x4320, 8K UHD) in all\n", args.width,
                      args.height, static_cast<unsigned long long>(kMaxImagePixels));

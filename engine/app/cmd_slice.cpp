@@ -56,7 +56,9 @@ int run_slice(const SliceArgs& args)
     };
     const std::string ext = args.out.extension().string();
     if (ext != ".png" && ext != ".nrrd") return fail("--out " + args.out.string() + ": write a .png or a .nrrd");
-    if (!output_path_usable("slice", "--out", args.out)) return kExitBadInput;
+    if (!output_path_usable("slice", "--out", args.out) ||
+        !outputs_distinct("slice", {{"--out", args.out}}, {{"--volume", args.volume}, {"--labels", args.labels}, {"--model", args.model}}))
+        return kExitBadInput;
     if (args.press_mm >= 0 && args.force_n >= 0) return fail("--press-mm and --force: give one or the other");
     if (args.volume.empty() && !args.labels.empty()) return fail("--labels " + args.labels.string() + ": give the --volume they label");
     if (args.press_mm > session::Session::kMaxPressMm || !std::isfinite(args.press_mm))

@@ -18,11 +18,26 @@ inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitValidation = 3;
 
-// Whether `path` can take the command's output: its folder exists, and the path is not something
-// other than a regular file (a device node, a FIFO, a folder), which writing would replace. If not,
+// Whether `path` can take the command's output: its folder exists and can be written, the path is
+// not something other than a regular file (a device node, a FIFO, a folder), which writing would
+// replace, and its name fits the file system (NAME_MAX) with room for the temporaries it is written
+// through (PATH_MAX; io/partial_file.hpp, write_together). If not,
 // says so on stderr, naming the command and the option, so a command can refuse (exit 2) before it
 // spends time on work it cannot save.
 bool output_path_usable(const char* command, const char* option, const std::filesystem::path& path);
+
+// A file a command reads or writes, and how messages name it: the option that gives it ("--out"),
+// or where it comes from ("--out's labels").
+struct NamedPath {
+    std::string option;
+    std::filesystem::path path;  // empty: none
+};
+
+// Whether each output names a file of its own: no two outputs the same file, and no output one of
+// the inputs, which writing it would replace. Paths are compared by what they name, not by how they
+// are spelt (`./x`, `d/../x`, links, hard links). If not, says so on stderr naming both options, so
+// the command can refuse (exit 2) before any work.
+bool outputs_distinct(const char* command, const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
 
 // --model FILE: the tissue model a session runs (empty: the shipped thigh), read into `tissue`. A
 // file that cannot be read, or a model outside the physical ranges (tissue/physical_ranges.hpp), is
@@ -33,8 +48,10 @@ bool read_model_option(const char* command, const std::filesystem::path& file, s
 // that they stay a set: `write(i, path)` writes the i-th of `paths` into a private folder beside
 // it, and only once every one is complete are they all renamed into place (with any file a writer
 // put beside its own, such as a MetaImage's detached data). A failure midway leaves every old file
-// as it was and removes the new ones. Throws what `write` throws, or std::runtime_error naming the
-// file that could not be moved into place.
+// as it was and removes the new ones. The private folders (.echosim-writing-PID-SIX,
+// io/owned_temp.hpp) that a killed run left are removed by the next write into the same folder.
+// Throws what `write` throws, or std::runtime_error naming the file that could not be moved into
+// place.
 void write_together(const std::vector<std::filesystem::path>& paths,
                     const std::function<void(std::size_t, const std::filesystem::path&)>& write);
 

@@ -8,8 +8,11 @@
 #include <stdexcept>
 #include <system_error>
 
+#include <unistd.h>
+
 #include "echo/case_volume.hpp"
 #include "echo/echo_image_cpu.hpp"
+#include "io/owned_temp.hpp"
 #include "io/volume_file.hpp"
 #include "scene/leg.hpp"
 
@@ -18,6 +21,9 @@ namespace {
 
 // Bump when the phantom, the B-mode model, the sweep or the reconstruction change what they make.
 constexpr const char* kRecipe = "v1";
+
+// What a cached pair's folder is called while it is being written: NAME MARKER PID-SIX.
+constexpr const char* kPartialMarker = ".partial-";
 
 // f(const T* voxels) with the volume's own voxel type.
 template <class F>
@@ -103,12 +109,19 @@ std::filesystem::path cache_folder()
     throw std::runtime_error("no cache folder: neither XDG_CACHE_HOME nor HOME is set");
 }
 
+std::filesystem::path case_volume_folder(echo::Case which)
+{
+    return cache_folder() / "volumes" / (std::string(echo::case_name(which)) + "-0.3mm-" + kRecipe);
+}
+
 VolumePair case_volume(echo::Case which, const std::function<void(const std::string&, double)>& progress)
 {
-    const std::string name = std::string(echo::case_name(which)) + "-0.3mm-" + kRecipe;
-    const std::filesystem::path folder = cache_folder() / "volumes" / name;
+    const std::filesystem::path folder = case_volume_folder(which);
+    const std::string name = folder.filename().string();
     const std::filesystem::path volume_file = folder / "volume.nrrd", labels_file = folder / "labels.nrrd";
     std::error_code ec;
+    // pairs that runs killed while making them left half written (any case's, any recipe's)
+    io::remove_stale(folder.parent_path(), kPartialMarker);
     if (std::filesystem::exists(volume_file) && std::filesystem::exists(labels_file)) {
         try {
             VolumePair pair = user_volume(volume_file, labels_file);
@@ -123,22 +136,30 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
 
     const scene::LegModel leg;
     echo::CaseVolume made = echo::make_case_volume(leg, which, {}, progress);
-    // the pair into a folder of its own, renamed into place whole
-    const std::filesystem::path partial = folder.parent_path() / (name + ".partial-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(partial, ec);
-    if (ec) throw std::runtime_error("cannot create the volume cache folder " + partial.string() + ": " + ec.message());
+    // the pair into a folder of its own (locked while this run lives: io/owned_temp.hpp), renamed
+    // into place whole
+    std::filesystem::create_directories(folder.parent_path(), ec);
+    if (ec) throw std::runtime_error("cannot create the volume cache folder " + folder.parent_path().string() + ": " + ec.message());
+    io::OwnedTemp partial;
     try {
-        io::write_nrrd(partial / "volume.nrrd", made.volume, true);
-        io::write_nrrd(partial / "labels.nrrd", made.labels, true);
+        partial = io::create_owned_folder(folder.parent_path(), name, kPartialMarker);
+    } catch (const std::system_error& e) {
+        throw std::runtime_error(std::string("cannot write the volume cache: ") + e.what());
+    }
+    try {
+        io::write_nrrd(partial.path / "volume.nrrd", made.volume, true);
+        io::write_nrrd(partial.path / "labels.nrrd", made.labels, true);
     } catch (...) {
-        std::filesystem::remove_all(partial, ec);
+        std::filesystem::remove_all(partial.path, ec);
+        ::close(partial.fd);
         throw;
     }
-    std::filesystem::rename(partial, folder, ec);
-    if (ec) {
-        std::filesystem::remove_all(partial);  // another run cached it first: theirs is as good
-        if (!std::filesystem::exists(volume_file)) throw std::runtime_error("cannot move the volume into the cache at " + folder.string() + ": " + ec.message());
-    }
+    std::error_code moved;
+    std::filesystem::rename(partial.path, folder, moved);
+    if (moved) std::filesystem::remove_all(partial.path, ec);  // another run cached it first: theirs is as good
+    ::close(partial.fd);
+    if (moved && !std::filesystem::exists(volume_file))
+        throw std::runtime_error("cannot move the volume into the cache at " + folder.string() + ": " + moved.message());
     VolumePair pair{std::make_shared<io::Volume>(std::move(made.volume)), std::make_shared<io::Volume>(std::move(made.labels)),
                     "the " + std::string(echo::case_name(which)) + " case's volume, made and cached in " + folder.string()};
     return pair;

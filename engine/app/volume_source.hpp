@@ -4,7 +4,9 @@
 // and kept in the user's cache ($XDG_CACHE_HOME/echosim, else ~/.cache/echosim), so later runs
 // start at once. A cached pair is written into a folder of its own under a temporary name and
 // renamed into place whole, so a run interrupted while making it leaves no half pair that a later
-// run would take; the folder's name carries the recipe's version, so a changed recipe is remade.
+// run would take, and the half-written folder it leaves (NAME.partial-PID-SIX, io/owned_temp.hpp)
+// is removed by the next run once its owner is gone; the folder's name carries the recipe's
+// version, so a changed recipe is remade.
 #pragma once
 
 #include <filesystem>
@@ -26,6 +28,9 @@ struct VolumePair {
 // The cache folder: $XDG_CACHE_HOME/echosim, else $HOME/.cache/echosim. Throws std::runtime_error
 // when neither variable is set.
 std::filesystem::path cache_folder();
+
+// The folder in the cache that holds a case's default volume and labels (volume.nrrd, labels.nrrd).
+std::filesystem::path case_volume_folder(echo::Case which);
 
 // The default volume of a case, from the cache or made now (telling `progress` what it does and
 // how far it is, 0..1) and cached. Throws std::runtime_error naming the folder when the cache

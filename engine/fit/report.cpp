@@ -85,7 +85,7 @@ void write_report(const std::filesystem::path& folder, const MeasurementSet& set
                         {"mu_Ns_per_mm", r.params.mu},
                         {"a_per_N", r.params.a},
                         {"b_mm_per_N", r.params.b}};
-    io::write_file<std::runtime_error>(folder / "report.json", j.dump(2) + "\n");
+    io::write_file<std::runtime_error>(folder / kReportFiles[0], j.dump(2) + "\n");
 
     // Fig. 4: how many samples the model misses by how much (signed: model - measured)
     std::vector<double> errors;
@@ -100,11 +100,11 @@ void write_report(const std::filesystem::path& folder, const MeasurementSet& set
                   100.0 * r.all.rel_error, r.all.samples);
     hist.annotation = note;
     hist.legend = io::Corner::none;
-    io::write_png(folder / "error_histogram.png", io::render_plot(hist, 900, 600));
+    io::write_png(folder / kReportFiles[1], io::render_plot(hist, 900, 600));
 
     // Fig. 2: measured against fitted curves at 11 points, one figure per probe
-    io::write_png(folder / "curves_indenter.png", io::render_plot(curves(set, r, ProbeKind::indenter), 1000, 700));
-    io::write_png(folder / "curves_probe.png", io::render_plot(curves(set, r, ProbeKind::probe), 1000, 700));
+    io::write_png(folder / kReportFiles[2], io::render_plot(curves(set, r, ProbeKind::indenter), 1000, 700));
+    io::write_png(folder / kReportFiles[3], io::render_plot(curves(set, r, ProbeKind::probe), 1000, 700));
 }
 
 }  // namespace echosim::fit

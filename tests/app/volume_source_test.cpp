@@ -1,11 +1,16 @@
 #include "app/volume_source.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
+#include "io/owned_temp.hpp"
 #include "io/volume_file.hpp"
 #include "test_files.hpp"
 
@@ -67,6 +72,43 @@ TEST(VolumeSource, RefusesLabelsThatAreNotTissueCodes)
     }
     std::filesystem::remove(volume);
     std::filesystem::remove(labels);
+}
+
+// A run killed while it made the default volume left its half-written folder in the cache; the next
+// run removes it (and only it: not one that a live run is writing, nor anything else there).
+TEST(VolumeSource, RemovesTheHalfWrittenCacheOfARunThatIsGone)
+{
+    const auto cache = temp("cache");
+    std::filesystem::remove_all(cache);
+    const char* old_xdg = std::getenv("XDG_CACHE_HOME");
+    const std::string saved = old_xdg ? old_xdg : "";
+    ::setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+
+    // a cached pair, so that no volume is made here
+    const auto folder = case_volume_folder(echo::Case::healthy);
+    std::filesystem::create_directories(folder);
+    io::write_volume(folder / "volume.nrrd", io::make_volume({4, 2, 2}, io::VoxelType::uint8), false);
+    io::write_volume(folder / "labels.nrrd", io::make_volume({4, 2, 2}, io::VoxelType::uint8), false);
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // its PID names no process now
+    const auto killed = folder.parent_path() / (folder.filename().string() + ".partial-" + std::to_string(child) + "-abc123");
+    std::filesystem::create_directories(killed);
+    io::write_volume(killed / "volume.nrrd", io::make_volume({4, 2, 2}, io::VoxelType::uint8), false);
+    const io::OwnedTemp live = io::create_owned_folder(folder.parent_path(), "other-0.3mm-v1", ".partial-");
+    const auto unrelated = folder.parent_path() / "notes.partial";
+    test::write_bytes(unrelated, "mine");
+
+    const VolumePair pair = case_volume(echo::Case::healthy, {});
+    EXPECT_NE(pair.description.find("cached in"), std::string::npos) << pair.description;
+    EXPECT_FALSE(std::filesystem::exists(killed));
+    EXPECT_TRUE(std::filesystem::is_directory(live.path));
+    EXPECT_EQ(test::read_bytes(unrelated), "mine");
+
+    ::close(live.fd);
+    if (old_xdg) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
+    else ::unsetenv("XDG_CACHE_HOME");
+    std::filesystem::remove_all(cache);
 }
 
 }  // namespace
