@@ -15,12 +15,15 @@
 #include "app/gpu_args.hpp"
 #include "app/live_link.hpp"
 #include "app/session_frame.hpp"
+#include "app/stop_signals.hpp"
 #include "app/terminal_progress.hpp"
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
 #include "device/mouse_keyboard_device.hpp"
 #include "device/null_device.hpp"
 #include "device/scripted_device.hpp"
+#include "device/openhaptics_device.hpp"
+#include "device/simulated_arm.hpp"
 #include "device/spacemouse_device.hpp"
 #include "core/parse_number.hpp"
 #include "gpu/window.hpp"
@@ -116,13 +119,21 @@ int run_window(const RunArgs& args)
     session::SessionOptions session_options{.clock = session::Clock::real_time};
     if (!read_model_option("run", args.model, session_options.tissue)) return kExitBadInput;
     // the probe moves through the haptic loop: from the window's mouse and keyboard, a SpaceMouse,
-    // a scripted trajectory, or nothing
+    // a force-feedback arm (a Touch through OpenHaptics, or the simulated one), a scripted
+    // trajectory, or nothing
     auto mouse = std::make_shared<device::MouseKeyboardDevice>();
     try {
         if (!args.trajectory.empty())
             session_options.device = std::make_shared<device::ScriptedDevice>(device::Trajectory::load(args.trajectory), args.trajectory.string());
         else if (args.device == "spacemouse")
             session_options.device = std::make_shared<device::SpaceMouseDevice>();
+        else if (args.device == "openhaptics") {
+            const device::hd::HdLoad hd = device::hd::load_hd_library();
+            if (!hd.api)
+                throw std::runtime_error("--device openhaptics: OpenHaptics' libHD.so not found (" + hd.error + "); " + device::hd::kInstallHint);
+            session_options.device = std::make_shared<device::OpenHapticsDevice>(hd.api);
+        } else if (args.device == "simulated-arm")
+            session_options.device = std::make_shared<device::SimulatedArm>();
         else if (args.device == "null")
             session_options.device = std::make_shared<device::NullDevice>();
         else
@@ -149,6 +160,12 @@ int run_window(const RunArgs& args)
     }
     progress.finish();
     std::printf("echosim run: echographic volume: %s\n", volumes.description.c_str());
+
+    // From here on a device may be driven: Ctrl-C or SIGTERM ends the run at its next frame, in
+    // order (the device's force to zero, the summary), exit 128 + the signal
+    // (app/stop_signals.hpp). Before, while the volume is made, either ends the process at once:
+    // nothing is held then that needs letting go.
+    const StopSignals stop;
 
     gpu::Window window({args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"});
     gpu::ContextOptions options = context_options(args.gpu);
@@ -194,7 +211,7 @@ int run_window(const RunArgs& args)
         std::vector<device::DeviceEvent> events;
         std::string device_status;  // what the title says of the device while it is away
         auto last = std::chrono::steady_clock::now();
-        while (!window.should_close() && (args.frames == 0 || presented < args.frames)) {
+        while (!window.should_close() && (args.frames == 0 || presented < args.frames) && !stop.requested()) {
             glfwPollEvents();
             const auto now = std::chrono::steady_clock::now();
             // a frame's time as the probe's speed sees it: a stall (a dragged window) is no leap
@@ -238,7 +255,8 @@ int run_window(const RunArgs& args)
                 glfwWaitEventsTimeout(0.05);  // minimised: do not spin
         }
         swapchains = presenter.swapchain_generation();
-        scene.session.stop();
+        scene.session.stop();  // first: the haptic loop ends and sends the device a zero force
+        if (const int signal = stop.requested()) std::printf("echosim run: stopped by %s\n", StopSignals::name(signal));
         const physics::RunnerStats st = scene.session.physics_stats();
         std::printf("echosim run: physics stepped %lld times (%lld late, %lld asleep), last probe force %.2f N\n",
                     static_cast<long long>(st.steps), static_cast<long long>(st.overruns), static_cast<long long>(st.asleep),
@@ -263,11 +281,9 @@ int run_window(const RunArgs& args)
                     static_cast<long long>(st.frames_published));
     }
     const std::uint32_t n = messages->load();
-    if (n > 0) {
-        std::fprintf(stderr, "echosim run: Vulkan validation reported %u message(s)\n", n);
-        return kExitValidation;
-    }
-    return kExitOk;
+    if (n > 0) std::fprintf(stderr, "echosim run: Vulkan validation reported %u message(s)\n", n);
+    if (const int signal = stop.requested()) return StopSignals::exit_code(signal);
+    return n > 0 ? kExitValidation : kExitOk;
 }
 
 }  // namespace echosim::app

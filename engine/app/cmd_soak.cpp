@@ -5,6 +5,7 @@
 #include "app/commands.hpp"
 #include "app/gpu_args.hpp"
 #include "app/soak.hpp"
+#include "app/stop_signals.hpp"
 #include "io/partial_file.hpp"
 
 namespace echosim::app {
@@ -23,9 +24,16 @@ int run_soak(const SoakArgs& args)
                     p.rss_mib, p.haptic_missed);
         std::fflush(stdout);
     };
+    // Ctrl-C or SIGTERM: the run ends at its next frame, judged as far as it went, its report
+    // printed and written; exit 128 + the signal (app/stop_signals.hpp)
+    const StopSignals stop;
+    o.stop_requested = [&stop] { return stop.requested(); };
     std::printf("echosim soak: %.0f s of a scripted session (warm-up %.1f s), making its volume...\n", o.seconds, soak_warmup_s(o.seconds));
     std::fflush(stdout);
     const SoakResult r = run_soak_session(o);
+    if (r.stopped_by_signal)
+        std::printf("echosim soak: stopped by %s after %.1f of %.0f s (the device's force set to zero, the session stopped)\n",
+                    StopSignals::name(r.stopped_by_signal), r.seconds, r.requested_s);
 
     std::printf("echosim soak: %.1f s on %s (%ux%u): %lld frames (%.1f/s), %lld physics steps (%lld late), %lld haptic ticks (%s)\n",
                 r.seconds, r.device.c_str(), r.width, r.height, r.frames, r.seconds > 0 ? double(r.frames) / r.seconds : 0.0,
@@ -46,6 +54,10 @@ int run_soak(const SoakArgs& args)
     if (!args.json.empty()) {
         io::write_file<std::runtime_error>(args.json, soak_json(r));  // a failure: main names the file
         std::printf("echosim soak: wrote %s\n", args.json.c_str());
+    }
+    if (r.stopped_by_signal) {
+        std::printf("echosim soak: %s (stopped early: judged over %.1f s)\n", r.passed() ? "bounds held" : "bounds not held", r.seconds);
+        return StopSignals::exit_code(r.stopped_by_signal);
     }
     if (r.passed()) {
         std::printf("echosim soak: passed\n");

@@ -15,6 +15,7 @@
 #include "app/haptics_demo.hpp"
 #include "app/host_steal.hpp"
 #include "app/session_frame.hpp"
+#include "app/stop_signals.hpp"
 #include "app/volume_source.hpp"
 #include "device/scripted_device.hpp"
 #include "echo/case_volume.hpp"
@@ -173,7 +174,10 @@ SoakResult run_soak_session(const SoakOptions& o)
         for (;;) {
             const auto now = std::chrono::steady_clock::now();
             const double t = std::chrono::duration<double>(now - start).count();
-            if (t >= next_sample || t >= o.seconds) {
+            // a stop asked for (a signal) ends the run as its time would: a last sample, then out
+            const int signal = o.stop_requested ? o.stop_requested() : 0;
+            const bool end = t >= o.seconds || signal != 0;
+            if (t >= next_sample || end) {
                 const haptics::PeriodStats h = loop.stats();
                 const std::optional<double> steal = host_steal_s();
                 if (r.samples.empty()) steal_at_start = steal;
@@ -188,13 +192,14 @@ SoakResult run_soak_session(const SoakOptions& o)
                 at_last_sample = h;
                 r.samples.push_back({t, resident_mib(), r.frames, h.missed_deadlines, stolen});
                 next_sample = std::floor(t) + 1.0;
-                if (o.progress && (t >= next_progress || t >= o.seconds)) {
+                if (o.progress && (t >= next_progress || end)) {
                     o.progress({t, o.seconds, r.frames, r.samples.back().rss_mib, r.samples.back().haptic_missed});
                     next_progress += progress_every;
                 }
             }
-            if (t >= o.seconds) {
+            if (end) {
                 r.seconds = t;
+                r.stopped_by_signal = signal;
                 break;
             }
             scene.session.advance(std::max(1e-4, std::chrono::duration<double>(now - last).count()));
@@ -268,6 +273,8 @@ std::string soak_json(const SoakResult& r)
         {"samples", samples},  // one a second; frames, missed deadlines and host steal so far
         {"deadlines", to_string(r.deadlines)},
         {"bounds", bounds},
+        // the signal that ended the run early, or null (it ran its `requested_seconds`)
+        {"stopped_by_signal", r.stopped_by_signal ? nlohmann::json(StopSignals::name(r.stopped_by_signal)) : nlohmann::json(nullptr)},
     };
     return j.dump(2) + "\n";
 }

@@ -111,6 +111,8 @@ struct SoakResult {
     MemoryVerdict rss;
     DeadlineCheck deadlines = DeadlineCheck::strict;
     std::vector<SoakBound> bounds;
+    // the signal that ended the run before its time (app/stop_signals.hpp), 0 when it ran to its end
+    int stopped_by_signal = 0;
 
     bool passed() const;
 };
@@ -131,10 +133,14 @@ struct SoakOptions {
     std::uint32_t width = 1280, height = 720;
     DeadlineCheck deadlines = DeadlineCheck::strict;
     std::function<void(const SoakProgress&)> progress;  // about every tenth of the run
+    // Looked at once a frame: a signal's number (app/stop_signals.hpp) ends the run there, in order
+    // (the session stopped, the device sent a zero force, the run judged as far as it went); 0 goes on.
+    std::function<int()> stop_requested;
 };
 
-// Runs the soak (a few seconds of set-up, then `seconds` of session) and judges it. Throws what
-// set-up throws (no Vulkan device, no validation layer).
+// Runs the soak (a few seconds of set-up, then `seconds` of session, or until stop_requested says
+// otherwise: a request during set-up ends it at its first frame) and judges it. Throws what set-up
+// throws (no Vulkan device, no validation layer).
 SoakResult run_soak_session(const SoakOptions& options);
 
 // The report as JSON text (README "Soak").

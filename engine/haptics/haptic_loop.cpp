@@ -125,9 +125,14 @@ void HapticLoop::start()
 
 void HapticLoop::stop()
 {
-    if (!running_.exchange(false)) return;
-    if (thread_.joinable()) thread_.join();
-    wake_latency_.release();
+    if (running_.exchange(false)) {
+        if (thread_.joinable()) thread_.join();
+        wake_latency_.release();
+    }
+    // the hand is let go first, whatever stops the session (its end, a signal, an error): a device
+    // that renders force is sent none from here on (the loop's thread, which sent the last, has
+    // ended; in lock-step the caller is the ticking thread)
+    device_->write_force(Eigen::Vector3d::Zero());
 }
 
 PeriodStats HapticLoop::stats()

@@ -66,6 +66,7 @@ public:
 
     // real time: the loop's thread; start() returns once it runs, its priority settled
     void start();
+    // Ends the thread (if it runs) and sends the device a zero force; also on destruction.
     void stop();
     bool running() const { return running_.load(); }
     // "" when it runs real time (SCHED_FIFO, and the CPUs kept from idling deeper than polling:
