@@ -1,5 +1,6 @@
 #include "haptics/haptic_loop.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -10,6 +11,8 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/prctl.h>
+
+#include "haptics/realtime_thread.hpp"
 
 namespace echosim::haptics {
 namespace {
@@ -107,6 +110,8 @@ void HapticLoop::start()
 {
     if (running_.exchange(true)) return;
     if (options_.realtime_priority && options_.keep_cpus_awake) wake_latency_ = CpuWakeLatency(0);
+    // before the thread is made: MCL_FUTURE locks its stack as it is mapped
+    if (options_.realtime_priority && options_.lock_memory) memory_lock_ = MemoryLock::lock_all();
     started_ = 0;
     thread_ = std::thread([this] { run(); });
     while (started_.load(std::memory_order_acquire) == 0) std::this_thread::yield();
@@ -121,6 +126,9 @@ void HapticLoop::start()
     if (!wake_latency_.refusal().empty())
         priority_note_ += std::string(priority_note_.empty() ? "haptic loop: " : "; ") + "the CPUs may idle between ticks and wake late (" +
                           wake_latency_.refusal() + ")";
+    // a page fault may then stall a tick behind another thread's memory work
+    if (!memory_lock_.refusal().empty()) priority_note_ += std::string(priority_note_.empty() ? "haptic loop: " : "; ") + memory_lock_.refusal();
+    if (!pin_refusal_.empty()) priority_note_ += std::string(priority_note_.empty() ? "haptic loop: " : "; ") + pin_refusal_;
 }
 
 void HapticLoop::stop()
@@ -128,6 +136,7 @@ void HapticLoop::stop()
     if (running_.exchange(false)) {
         if (thread_.joinable()) thread_.join();
         wake_latency_.release();
+        memory_lock_.release();
     }
     // the hand is let go first, whatever stops the session (its end, a signal, an error): a device
     // that renders force is sent none from here on (the loop's thread, which sent the last, has
@@ -151,6 +160,23 @@ void HapticLoop::run()
         p.sched_priority = sched_get_priority_max(SCHED_FIFO) - 10;
         priority_errno_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
     }
+    // pinned only with SCHED_FIFO: a best-effort thread fixed to one CPU could not flee a busy one
+    cpu_ = -1;
+    pin_refusal_.clear();
+    if (options_.realtime_priority && options_.pin_cpu && priority_errno_ == 0) cpu_ = pin_to_last_cpu(pin_refusal_);
+    // Nothing left to fault in after this: the stack a tick uses and the state only this thread
+    // touches (written once at construction, by another thread: read here; the hand-off slots it
+    // fills next: written here). Faults from here on are counted.
+    prefault_stack();
+    prefault_read(&now_, sizeof now_);
+    prefault_read(&model_, sizeof model_);
+    prefault_read(&stats_, sizeof stats_);
+    stats_out_.write_slot() = stats_;
+    out_.write_slot() = now_;
+    const std::int64_t faults_at_start = thread_page_faults();
+    const auto update_faults = [&] {
+        if (faults_at_start >= 0) stats_.page_faults = thread_page_faults() - faults_at_start;
+    };
     started_.store(1, std::memory_order_release);
 
     const std::int64_t period = std::int64_t(std::llround(1e9 / options_.rate_hz));
@@ -167,6 +193,7 @@ void HapticLoop::run()
             wake = now_ns();
         }
         stats_.add_period(double(wake - last_wake) * 1e-6, nominal_ms);
+        stats_.max_late_ms = std::max(stats_.max_late_ms, double(wake - due) * 1e-6);
         last_wake = wake;
         if (wake > due + period) {
             // woke after the next tick was due: count it, and do not run a burst of ticks to catch up
@@ -177,11 +204,13 @@ void HapticLoop::run()
         const double work_us = double(now_ns() - wake) * 1e-3;
         if (work_us > stats_.max_tick_us) stats_.max_tick_us = work_us;
         if (++n % 100 == 0) {
+            update_faults();
             stats_out_.write_slot() = stats_;
             stats_out_.publish();
         }
         due += period;
     }
+    update_faults();
     stats_out_.write_slot() = stats_;
     stats_out_.publish();
 }

@@ -13,6 +13,10 @@
 // Two clocks, as the physics has: start() runs the loop on a thread of its own, sleeping to absolute
 // deadlines (clock_nanosleep) and spinning only the last few tens of microseconds; tick(t) runs one
 // tick in the caller's thread at simulated time t, so a headless exam or a test is reproducible.
+//
+// A real-time start also keeps the loop from waiting on memory (issue 34): the process's memory
+// locked (memory_lock.hpp), the thread's stack and the loop's own buffers faulted in before the first
+// tick, the thread fixed on one CPU; its page faults after that are counted (PeriodStats::page_faults).
 #pragma once
 
 #include <atomic>
@@ -25,6 +29,7 @@
 #include "device/device.hpp"
 #include "haptics/cpu_wake_latency.hpp"
 #include "haptics/force_law.hpp"
+#include "haptics/memory_lock.hpp"
 #include "haptics/period_stats.hpp"
 #include "haptics/probe_mapping.hpp"
 #include "physics/physics_runner.hpp"
@@ -37,6 +42,8 @@ struct HapticOptions {
     bool local_model = true;        // false: hold the last physics force (the paper's comparison)
     bool realtime_priority = true;  // ask for SCHED_FIFO (needs CAP_SYS_NICE or an rtprio limit)
     bool keep_cpus_awake = true;    // with realtime_priority: hold a CpuWakeLatency request of 0 us while running
+    bool lock_memory = true;        // with realtime_priority: mlockall while running (memory_lock.hpp)
+    bool pin_cpu = true;            // with SCHED_FIFO granted: run on the last CPU the process may use
     double velocity_cutoff_hz = 20; // the probe's velocity, from its poses, low-passed
 };
 
@@ -69,10 +76,13 @@ public:
     // Ends the thread (if it runs) and sends the device a zero force; also on destruction.
     void stop();
     bool running() const { return running_.load(); }
-    // "" when it runs real time (SCHED_FIFO, and the CPUs kept from idling deeper than polling:
-    // cpu_wake_latency.hpp), else what it lacks and why (said once, by whoever starts it)
+    // "" when it runs real time (SCHED_FIFO, the CPUs kept from idling deeper than polling:
+    // cpu_wake_latency.hpp, the memory locked, pinned where there is a CPU to choose), else what it
+    // lacks and why (said once, by whoever starts it)
     const std::string& priority_note() const { return priority_note_; }
     bool cpus_awake() const { return wake_latency_.held(); }
+    bool memory_locked() const { return memory_lock_.held(); }
+    int cpu() const { return cpu_; }  // the CPU the running loop is pinned to, -1 when none
 
     // the session's driver thread (one reader): the latest tick
     const HapticSample& latest() { return out_.read(); }
@@ -109,6 +119,9 @@ private:
     std::string priority_note_;
     int priority_errno_ = 0;
     CpuWakeLatency wake_latency_;  // held from start() to stop()
+    MemoryLock memory_lock_;       // held from start() to stop()
+    int cpu_ = -1;
+    std::string pin_refusal_;      // set by the thread before it says it runs
 };
 
 }  // namespace echosim::haptics

@@ -23,6 +23,7 @@ PeriodStats PeriodStats::since(const PeriodStats& earlier) const
     }
     d.periods = periods - earlier.periods;
     d.missed_deadlines = missed_deadlines - earlier.missed_deadlines;
+    d.page_faults = page_faults - earlier.page_faults;
     return d;
 }
 
@@ -33,6 +34,8 @@ void PeriodStats::merge(const PeriodStats& other)
     missed_deadlines += other.missed_deadlines;
     max_error_ms = std::max(max_error_ms, other.max_error_ms);
     max_tick_us = std::max(max_tick_us, other.max_tick_us);
+    max_late_ms = std::max(max_late_ms, other.max_late_ms);
+    page_faults += other.page_faults;
 }
 
 double PeriodStats::error_quantile_ms(double q) const
