@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "core/parse_number.hpp"
+#include "core/printable_text.hpp"
 
 namespace echosim::device {
 namespace {
@@ -43,7 +44,7 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& source)
             for (char c : l)
                 if (c != ' ' && c != '\t') squeezed += c;
             if (squeezed != kHeader)
-                throw std::invalid_argument(where + ": the header must be '" + kHeader + "', not '" + std::string(l) + "'");
+                throw std::invalid_argument(where + ": the header must be '" + kHeader + "', not '" + printable(l) + "'");
             header = true;
             continue;
         }
@@ -57,9 +58,9 @@ Trajectory Trajectory::parse(const std::string& text, const std::string& source)
             if (field == 7 && token.find(',') != std::string_view::npos)
                 throw std::invalid_argument(where + ": more than 8 fields");
             if (!parse_number(token, v[field]) || !std::isfinite(v[field]))
-                throw std::invalid_argument(where + ": " + kFields[field] + " '" + std::string(token) + "' is not a finite number");
+                throw std::invalid_argument(where + ": " + kFields[field] + " '" + printable(token) + "' is not a finite number");
             if (field >= 1 && field <= 3 && std::abs(v[field]) > kMaxPoseCoordinateMm)
-                throw std::invalid_argument(where + ": " + kFields[field] + " '" + std::string(token) +
+                throw std::invalid_argument(where + ": " + kFields[field] + " '" + printable(token) +
                                             "' is more than a kilometre from the origin (at most 1e6 mm)");
             begin = comma + 1;
         }

@@ -13,6 +13,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/printable_text.hpp"
+
 namespace echosim::fit {
 
 enum class ProbeKind { indenter, probe };
@@ -35,9 +37,9 @@ struct MeasurementSet {
 };
 
 // Thrown for a malformed file; what() names the file, the line and the field.
-class MeasurementError : public std::runtime_error {
+class MeasurementError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 MeasurementSet read_measurements(const std::filesystem::path& path);

@@ -36,13 +36,14 @@
 #include <string_view>
 #include <vector>
 
+#include "core/printable_text.hpp"
 #include "io/nrrd.hpp"
 
 namespace echosim::io {
 
-class MetaImageError : public std::runtime_error {
+class MetaImageError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 // The same budget as NRRD volumes: element data above it is refused before any allocation.

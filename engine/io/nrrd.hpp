@@ -28,13 +28,15 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/printable_text.hpp"
+
 namespace echosim::io {
 
 static_assert(std::endian::native == std::endian::little, "Volume keeps voxels as little-endian bytes");
 
-class NrrdError : public std::runtime_error {
+class NrrdError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 // 8 GiB: read_nrrd refuses larger voxel data before allocating any of it.

@@ -17,11 +17,13 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/printable_text.hpp"
+
 namespace echosim::io {
 
-class PlusConfigError : public std::runtime_error {
+class PlusConfigError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 enum class PlusInterpolation { nearest_neighbor, linear };

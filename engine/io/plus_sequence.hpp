@@ -24,14 +24,15 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/printable_text.hpp"
 #include "io/nrrd.hpp"
 #include "io/transform_repository.hpp"
 
 namespace echosim::io {
 
-class PlusSequenceError : public std::runtime_error {
+class PlusSequenceError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 // 8 GiB of pixels at most, refused before any allocation.

@@ -18,6 +18,8 @@
 #include <system_error>
 #include <vector>
 
+#include "core/printable_text.hpp"
+
 namespace echosim::io::text {
 
 inline std::string_view trim(std::string_view s)
@@ -47,11 +49,12 @@ inline std::string format_double(double v)
     return ec == std::errc() ? std::string(buf, end) : std::string("nan");
 }
 
-// A value quoted for a message, cut short: enough to recognise a line, not a screenful of binary.
+// A value quoted for a message, cut short: enough to recognise a line, not a screenful of binary;
+// its control characters escaped (core/printable_text.hpp: no terminal escape sequence echoed).
 inline std::string quote_text(std::string_view s)
 {
-    constexpr std::size_t shown = 80;  // [chars]
-    return "'" + std::string(s.substr(0, shown)) + (s.size() > shown ? "...'" : "'");
+    constexpr std::size_t shown = 80;  // [bytes]
+    return "'" + printable(s.substr(0, shown)) + (s.size() > shown ? "...'" : "'");
 }
 
 inline std::string upper(std::string_view s)

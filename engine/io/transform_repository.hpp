@@ -17,11 +17,13 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/printable_text.hpp"
+
 namespace echosim::io {
 
-class TransformError : public std::runtime_error {
+class TransformError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 // "ProbeToTracker" -> {"Probe", "Tracker"}: split at the one "To" followed by a capital letter, as

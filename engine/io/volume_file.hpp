@@ -7,15 +7,16 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/printable_text.hpp"
 #include "io/metaimage.hpp"
 #include "io/nrrd.hpp"
 
 namespace echosim::io {
 
 // A file that is neither format, or a name whose extension says no format.
-class VolumeFileError : public std::runtime_error {
+class VolumeFileError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 // NRRD when the file starts with the magic "NRRD", MetaImage when its first line is `Name = Value`.

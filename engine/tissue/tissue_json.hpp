@@ -6,13 +6,14 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/printable_text.hpp"
 #include "tissue/tissue_model.hpp"
 
 namespace echosim::tissue {
 
-class ModelFileError : public std::runtime_error {
+class ModelFileError : public InputFileError {  // its message escaped (core/printable_text.hpp)
 public:
-    using std::runtime_error::runtime_error;
+    using InputFileError::InputFileError;
 };
 
 // Written through a temporary file and renamed, so a failed write never leaves a broken model.
