@@ -6,6 +6,8 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
+#include <utility>
 #include <string_view>
 #include <system_error>
 
@@ -22,7 +24,10 @@ using text::quote_text;
 using text::split_whitespace;
 using text::upper;
 
-constexpr std::uintmax_t max_config_bytes = std::uintmax_t(64) << 20;
+// [bytes] PLUS's own configurations are 5 to 60 KiB; a megabyte is room for a hundred devices. The
+// parsed document costs tinyxml2 about 40 times the text at worst (a file of empty elements: one
+// node, 100-odd bytes, for every 3 bytes); at 64 MiB that was 4.8 GB (issue 34).
+constexpr std::uintmax_t max_config_bytes = std::uintmax_t(1) << 20;
 
 // Where a message points: "FILE:LINE: Element: Attribute: why".
 struct Place {
@@ -233,6 +238,9 @@ PlusConfig read_plus_config(const std::filesystem::path& path)
                               ", not PlusConfiguration: not a PLUS device-set configuration");
 
     PlusConfig config;
+    // the transforms given so far, either way round -> their line: a repeat found in O(log n), not by
+    // looking through all before it (80,000 transforms took over a minute, issue 34)
+    std::map<std::pair<std::string, std::string>, int> defined;
     std::vector<const tinyxml2::XMLElement*> found;
     find_all(root, "CoordinateDefinitions", found);
     for (const tinyxml2::XMLElement* defs : found)
@@ -243,9 +251,9 @@ PlusConfig read_plus_config(const std::filesystem::path& path)
                 continue;
             }
             PlusConfigTransform transform = read_transform(place);
-            for (const PlusConfigTransform& other : config.transforms)
-                if ((other.from == transform.from && other.to == transform.to) || (other.from == transform.to && other.to == transform.from))
-                    place.fail("From", transform.from + "To" + transform.to + " is defined already, on line " + std::to_string(other.line));
+            const auto [at, added] = defined.try_emplace(std::minmax(transform.from, transform.to), transform.line);
+            if (!added)
+                place.fail("From", transform.from + "To" + transform.to + " is defined already, on line " + std::to_string(at->second));
             config.transforms.push_back(std::move(transform));
         }
     found.clear();

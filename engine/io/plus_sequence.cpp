@@ -370,6 +370,49 @@ PlusRecording read_seq_nrrd(const std::filesystem::path& path, std::istream& in,
     return recording;
 }
 
+// A sequence header grows with its frames: PLUS writes, per frame, FrameNumber, ImageStatus,
+// Timestamp, UnfilteredTimestamp and each tool's transform and status (about 600 bytes with three
+// tools). The header may take 1 MiB for its file-wide fields and 4 KiB for each frame its sizes
+// allow (room for some 25 tools): a header past that is refused before it is parsed, read once line
+// by line and nothing kept (a 169 MB header of one frame's fields took 3.8 GB: issue 34).
+constexpr std::uint64_t header_base_bytes = std::uint64_t(1) << 20;
+constexpr std::uint64_t header_frame_bytes = std::uint64_t(4) << 10;
+
+// The frames a header's sizes allow: the largest of them (the frames may be counted on any axis).
+std::uint64_t largest_size(std::string_view sizes)
+{
+    std::uint64_t most = 0;
+    for (const std::string_view token : split_whitespace(sizes)) {
+        std::uint64_t n = 0;
+        if (parse_number(token, n)) most = std::max(most, n);
+    }
+    return most;
+}
+
+// Throws naming the file when the header runs past its allowance; leaves `in` at the file's start.
+void check_header_size(const std::filesystem::path& path, std::istream& in, bool nrrd)
+{
+    std::string line;
+    std::uint64_t bytes = 0, frames = 0;
+    const std::uint64_t most_frames = (std::numeric_limits<std::uint64_t>::max() - header_base_bytes) / header_frame_bytes;
+    for (bool first = true; text::read_header_line<PlusSequenceError>(in, line, path, nrrd ? "NRRD" : "MetaImage"); first = false) {
+        bytes += line.size() + 1;
+        const std::string_view l = line;
+        if (nrrd && !first && text::trim(l).empty()) break;  // NRRD's header ends at its first blank line
+        const auto sep = l.find(nrrd ? ':' : '=');
+        const std::string_view name = text::trim(l.substr(0, std::min(sep, l.size())));
+        if (!nrrd && name == "ElementDataFile") break;
+        if (sep != std::string_view::npos && l.substr(sep, 2) != ":=" && (nrrd ? name == "sizes" : name == "DimSize"))
+            frames = std::min(largest_size(l.substr(sep + 1)), most_frames);
+        if (bytes > header_base_bytes + header_frame_bytes * frames)
+            fail(path, "the header runs past " + std::to_string(bytes - line.size() - 1) + " bytes, more than a sequence of " +
+                           std::to_string(frames) + " frames needs (1 MiB, and 4 KiB a frame: " +
+                           std::to_string(header_base_bytes + header_frame_bytes * frames) + " bytes)");
+    }
+    in.clear();
+    in.seekg(0);
+}
+
 void check_sweep(const std::filesystem::path& path, const Sweep& sweep)
 {
     if (sweep.width == 0 || sweep.height == 0 || sweep.frames.empty()) fail(path, "refusing to write an empty sweep");
@@ -439,8 +482,10 @@ PlusRecording read_plus_recording(const std::filesystem::path& path, std::uint64
     in.read(magic, sizeof magic);
     in.clear();
     in.seekg(0);
+    const bool nrrd = std::string_view(magic, sizeof magic) == "NRRD";
+    check_header_size(path, in, nrrd);
     PlusRecording r;
-    if (std::string_view(magic, sizeof magic) != "NRRD") {
+    if (!nrrd) {
         try {
             r = read_mha(path, in, memory_budget_bytes);
         } catch (const MetaImageError& e) {
@@ -475,16 +520,43 @@ TransformRepository frame_repository(const PlusRecording& recording, std::size_t
     return repo;
 }
 
+// Which transforms a frame names, as written: frames naming the same ones share one chain.
+std::vector<std::pair<std::string, std::string>> transform_names(const RecordedFrame& frame)
+{
+    std::vector<std::pair<std::string, std::string>> names;
+    names.reserve(frame.transforms.size());
+    for (const RecordedTransform& t : frame.transforms) names.emplace_back(t.from, t.to);
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
 }  // namespace
 
 Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, const TransformRepository& config,
                     const std::string& image_frame, const std::string& reference_frame)
 {
     Sweep sweep = std::move(recording.images);
+    // The chain is searched once for each set of transform names the frames hold (one set, in what
+    // trackers write), its repository kept and each frame's matrices set into it: a frame costs its
+    // own transforms and the chain's length, not a copy of every transform and a search (issue 34).
+    struct Shared {
+        TransformRepository repo;
+        std::optional<std::vector<TransformRepository::Step>> chain;
+    };
+    std::map<std::vector<std::pair<std::string, std::string>>, Shared> by_names;
     for (std::size_t f = 0; f < recording.frames.size(); ++f) {
         const RecordedFrame& frame = recording.frames[f];
         try {
-            const FrameTransform t = frame_repository(recording, f, config).get(image_frame, reference_frame);
+            auto [at, added] = by_names.try_emplace(transform_names(frame));
+            Shared& shared = at->second;
+            if (added) {
+                shared.repo = frame_repository(recording, f, config);
+                shared.chain = shared.repo.chain(image_frame, reference_frame);
+                if (!shared.chain) shared.repo.get(image_frame, reference_frame);  // throws, saying what is missing
+            } else {
+                for (const RecordedTransform& t : frame.transforms) shared.repo.set(t.from, t.to, t.matrix, t.valid);
+            }
+            const FrameTransform t = shared.repo.product(*shared.chain);
             sweep.frames[f].image_to_reference = t.matrix;
             sweep.frames[f].valid = t.valid && frame.image_valid;
         } catch (const TransformError& e) {
@@ -492,6 +564,19 @@ Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, 
         }
     }
     return sweep;
+}
+
+std::vector<AlsoRecorded> transforms_also_recorded(const PlusRecording& recording, const TransformRepository& config)
+{
+    std::vector<AlsoRecorded> out;
+    std::map<std::pair<std::string, std::string>, std::size_t> in_frames;  // name as written -> frames holding it
+    for (const RecordedFrame& frame : recording.frames)
+        for (const RecordedTransform& t : frame.transforms) ++in_frames[{t.from, t.to}];
+    for (const RecordedTransform& t : recording.file_transforms)
+        if (config.held(t.from, t.to)) out.push_back({t.from, t.to, 0});
+    for (const auto& [name, frames] : in_frames)
+        if (config.held(name.first, name.second)) out.push_back({name.first, name.second, frames});
+    return out;
 }
 
 std::string default_reference_frame(const PlusRecording& recording)

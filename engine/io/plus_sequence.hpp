@@ -13,6 +13,12 @@
 // image or any transform of its chain is not OK is kept but marked not valid; transforms that are
 // not on the chain (a stylus, a needle) are not looked at. Errors name the file, the frame (as
 // written, e.g. Seq_Frame0002) and the field.
+// Budget (issue 34): the header at most 1 MiB plus 4 KiB for each frame its sizes allow, checked in
+// one pass that keeps nothing before it is parsed; parsed, it holds about 10 times its size (each
+// field kept twice, as the MetaImage/NRRD header and by frame). The pixels within the memory budget
+// (8 GiB by default), checked against the header and the file before allocating; compressed ones
+// grow with the stream (io/zlib_stream.hpp). Time: linear in the file, plus one search of the
+// transforms for each different set of transform names the frames hold (resolve_sweep).
 #pragma once
 
 #include <cstddef>
@@ -87,9 +93,20 @@ PlusRecording read_plus_recording(const std::filesystem::path& path,
 // Each frame's ImageToReference, from its transforms, the file-wide ones and `config` (which the
 // recording's own take precedence over); the recording's pixels move into the sweep. Throws
 // PlusSequenceError naming the file, the frame and the missing transform when a frame has no chain
-// from `image_frame` to `reference_frame`.
+// from `image_frame` to `reference_frame`, or the singular one when a valid link of it is singular
+// (TransformRepository::product). Time: each frame's own transforms and its chain's length, plus one
+// search of all the transforms for each different set of transform names the frames hold.
 Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, const TransformRepository& config,
                     const std::string& image_frame = "Image", const std::string& reference_frame = "Reference");
+
+// A transform of the configuration that the recording holds too (either way round), as the
+// recording names it: file-wide (frames 0) or in `frames` of its frames. resolve_sweep uses the
+// recording's; a caller says so.
+struct AlsoRecorded {
+    std::string from, to;
+    std::size_t frames = 0;
+};
+std::vector<AlsoRecorded> transforms_also_recorded(const PlusRecording& recording, const TransformRepository& config);
 
 // The frame a recording is reconstructed in when nothing says: Reference, as PLUS's tools default
 // to, unless the recording's first frame names only the tracker's frame (then Tracker).

@@ -3,12 +3,17 @@
 //
 // Inflating refuses, before anything is allocated, a size that no stream of the input's length can
 // inflate to: deflate's densest code is 2 bits per 258-byte match, so a stream inflates to at most
-// 1032 times its own size (zlib's technical notes). The output is then reserved once (at most that
-// ratio times the input, so a header that lies about the size over a tiny payload costs no more than
-// the payload could really hold) and filled as the data comes; the input is read in chunks, so the
-// compressed data is never held whole. It runs on to the end of the stream: the checksum there is the
-// only guard against corrupt data that still inflates. Failures are thrown as ZlibError with what the
-// caller needs to say what went wrong in its own terms (file, field, the size its header gave).
+// 1032 times its own size (zlib's technical notes). The output then grows in blocks of up to 64 MiB
+// as the stream delivers bytes, never ahead of them, so a header that claims more than its stream
+// holds costs only what the stream really held; the input is read in 1 MiB chunks, so the compressed
+// data is never held whole. It runs on to the end of the stream (the checksum there is the only
+// guard against corrupt data that still inflates) but refuses at the first byte past the bytes
+// wanted: trailing data is never inflated only to be counted.
+// Budget: memory, the bytes wanted plus 64 MiB while the blocks are joined (resident; the joined
+// vector is touched as it fills), plus 1 MiB; time, one pass of inflate over at most the bytes
+// wanted and the stream's own end.
+// Failures are thrown as ZlibError with what the caller needs to say what went wrong in its own terms
+// (file, field, the size its header gave).
 #pragma once
 
 #include <cstdint>
@@ -31,6 +36,7 @@ public:
         input_ended,   // the input (or its allowance) ended inside the stream, after produced() bytes
         compressing,   // deflate failed
         too_large,     // the bytes wanted exceed what the input could inflate to (max_inflated_bytes)
+        too_long,      // the stream holds more than the bytes wanted (found at its first byte past them)
     };
     ZlibError(Kind kind, std::uint64_t produced, const std::string& what)
         : std::runtime_error(what), kind_(kind), produced_(produced)
@@ -46,7 +52,7 @@ private:
 
 struct Inflated {
     std::vector<std::uint8_t> data;  // exactly the bytes wanted
-    std::uint64_t beyond = 0;        // [bytes] the stream held past them, inflated, checked and dropped
+    std::uint64_t beyond = 0;        // always 0: a stream holding more is refused (too_long); kept for its callers
 };
 
 // deflate's largest ratio of inflated to compressed bytes (one literal, then matches of 258 bytes at
@@ -64,8 +70,8 @@ constexpr std::uint64_t max_inflated_bytes(std::uint64_t compressed)
 
 // Inflates a zlib or gzip stream (told apart by its header) from `in`, reading at most `max_input`
 // bytes of it (the caller passes the compressed size, or the bytes left in the file), into exactly
-// `bytes` bytes; throws `too_large` before anything when `bytes` > max_inflated_bytes(max_input).
-// Leaves `in` somewhere past the stream's end.
+// `bytes` bytes; throws `too_large` before anything when `bytes` > max_inflated_bytes(max_input),
+// `too_long` at the first inflated byte past `bytes`. Leaves `in` somewhere past the stream's end.
 Inflated inflate_exactly(std::istream& in, std::uint64_t bytes,
                          std::uint64_t max_input = std::numeric_limits<std::uint64_t>::max());
 

@@ -152,5 +152,29 @@ TEST(PlusConfig, RefusesWhatIsNotARegularFile)
     EXPECT_THROW(read_plus_config(temp("missing.xml")), PlusConfigError);
 }
 
+// Issue 34: a 60 MiB configuration took 4.8 GB to parse, and 80,000 transforms were checked for
+// repeats each against all before it. A configuration is at most 1 MiB (PLUS's are 5 to 60 KiB),
+// refused by its size; within it, 10,000 transforms are read, and a repeat among them still found.
+TEST(PlusConfig, RefusesAConfigurationPastOneMebibyteAndReadsManyTransforms)
+{
+    const std::string padding = "<!--" + std::string(std::size_t(1) << 20, '-') + "-->\n";
+    EXPECT_NE(error_of(with(kConfig, "</CoordinateDefinitions>", "</CoordinateDefinitions>" + padding)).find("larger than 1 MiB"),
+              std::string::npos);
+
+    std::string many;
+    for (int i = 0; i < 10000; ++i)
+        many += "<Transform From=\"A" + std::to_string(i) + "\" To=\"B" + std::to_string(i) + "\" Matrix=\"1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\"/>\n";
+    const std::string text = with(kConfig, "</CoordinateDefinitions>", many + "</CoordinateDefinitions>");
+    ASSERT_LT(text.size(), std::size_t(1) << 20);
+    const auto path = temp("many.xml");
+    write_bytes(path, text);
+    EXPECT_EQ(read_plus_config(path).transforms.size(), 10001u);  // and the calibration of kConfig
+    std::filesystem::remove(path);
+    EXPECT_NE(error_of(with(text, "</CoordinateDefinitions>",
+                            R"(<Transform From="B9999" To="A9999" Matrix="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/></CoordinateDefinitions>)"))
+                  .find("B9999ToA9999 is defined already"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace echosim::io

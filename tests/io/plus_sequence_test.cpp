@@ -527,5 +527,43 @@ TEST(PlusSequence, RefusesASingularTransformItWouldInvertNamingTheFrame)
                      {"Seq_Frame0000", "ReferenceToImage", "singular"});
 }
 
+// Issue 34: a 169 MB header of file-wide fields took 3.8 GB to parse. A header may hold 1 MiB and
+// 4 KiB for each frame its sizes allow; past that it is refused before it is parsed. Here: 1.1 MiB
+// of file-wide fields over a 4 x 3 x 3 sweep (4 KiB frames of allowance each: 1 MiB + 16 KiB), then
+// the same fields spread over 400 frames of their own (1 MiB + 1.6 MiB allowed), which is read.
+TEST(PlusSequence, RefusesAHeaderPastWhatItsFramesNeed)
+{
+    std::string junk;
+    for (int i = 0; junk.size() < (std::size_t(11) << 20) / 10; ++i) junk += "Note" + std::to_string(i) + " = " + std::string(100, 'x') + "\n";
+    expect_mha_error("long_header.mha", with(good_mha(), "\nElementType", "\n" + junk + "ElementType"),
+                     {"header runs past", "more than a sequence of 4 frames needs", "1 MiB, and 4 KiB a frame"});
+
+    const Sweep many = make_sweep(1, 1, 400);
+    const auto path = temp("many_frames.mha");
+    write_plus_mha(path, many, false);
+    std::string text = read_bytes(path);
+    std::string fields;
+    for (std::size_t f = 0; f < 400; ++f) {
+        char label[32];
+        std::snprintf(label, sizeof label, "Seq_Frame%04zu_", f);
+        fields += label + std::string("Note = ") + std::string(2900, 'y') + "\n";
+    }
+    text = with(text, "\nElementType", "\n" + fields + "ElementType");
+    ASSERT_GT(text.size(), std::size_t(1) << 20);
+    write_bytes(path, text);
+    EXPECT_EQ(read_plus_sequence(path).frames.size(), 400u);
+    std::filesystem::remove(path);
+}
+
+// Issue 34: a chain through a singular transform named the frame only when it had to be inverted;
+// one used forward collapsed the frame with no word.
+TEST(PlusSequence, RefusesASingularTransformOnTheChainNamingTheFrame)
+{
+    std::string text = good_mha();
+    const std::string singular = "Seq_Frame0001_ImageToReferenceTransform = 0.3 0.6 0 1 0 0 0 2 0 0 1 3 0 0 0 1";
+    text = with_line(text, "Seq_Frame0001_ImageToReferenceTransform =", singular);
+    expect_mha_error("singular.mha", text, {"Seq_Frame0001", "ImageToReference is singular", "onto a line"});
+}
+
 }  // namespace
 }  // namespace echosim::io

@@ -1,11 +1,16 @@
 #include "io/zlib_stream.hpp"
 
 #include <cstdint>
+#include <fstream>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <zlib.h>
 
 namespace echosim::io {
@@ -91,13 +96,67 @@ TEST(ZlibStream, InflatesZlibAndGzipStreamsExactly)
     }
 }
 
-TEST(ZlibStream, ChecksTheStreamPastTheBytesWantedAndCountsWhatItDrops)
+// Issue 34: a stream holding more than the bytes wanted was inflated to its end only to count the
+// rest (50 MB of compressed trailing data: 25 s); it is refused at the first byte past them. 64 MiB
+// of zeros behind the 1000 bytes wanted: the error comes with 1000 bytes produced, and the input is
+// read no further than the chunk that held them (the whole stream is about 64 KiB, so read whole,
+// but the bytes inflated stop at the first extra one: produced() says so).
+TEST(ZlibStream, RefusesAStreamHoldingMoreThanTheBytesWantedAtItsFirstExtraByte)
 {
     const auto data = pattern();
+    ZlibError e = inflate_error(compressed_by_zlib(data), 1000);
+    EXPECT_EQ(e.kind(), ZlibError::Kind::too_long);
+    EXPECT_EQ(e.produced(), 1000u);
+    EXPECT_NE(std::string(e.what()).find("do not end after the 1000 bytes"), std::string::npos) << e.what();
+    e = inflate_error(compressed_by_zlib(data), data.size() - 1);  // one byte too many is enough
+    EXPECT_EQ(e.kind(), ZlibError::Kind::too_long);
+    // exactly the stream's bytes: no error, nothing past them
     std::istringstream in(compressed_by_zlib(data));
-    const Inflated front = inflate_exactly(in, 1000);
-    EXPECT_EQ(front.data, std::vector<std::uint8_t>(data.begin(), data.begin() + 1000));
-    EXPECT_EQ(front.beyond, data.size() - 1000);
+    EXPECT_EQ(inflate_exactly(in, data.size()).data, data);
+}
+
+// Issue 34: a 3 MB stream may claim 3 GiB within deflate's ratio; the claim was reserved before a
+// byte was inflated. The output now follows the data: under an address-space limit far below the
+// claim, a short stream claiming 2 GiB fails as a short stream, not as an allocation. Run in a
+// child process, so the limit holds it alone (not under a sanitizer, whose shadow memory needs
+// terabytes of address space).
+TEST(ZlibStream, AClaimedSizeIsNotAllocatedAheadOfTheData)
+{
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    GTEST_SKIP() << "an address-space limit cannot be set under a sanitizer";
+#else
+    const std::vector<std::uint8_t> zeros(std::size_t(4) << 20, 0);
+    const std::string packed = compressed_by_zlib(zeros);  // about 4 KiB
+    const std::uint64_t claim = std::uint64_t(2) << 30;
+    ASSERT_LE(claim, max_inflated_bytes(packed.size() + (std::size_t(3) << 20)));  // within the ratio for a 3 MB input
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        rlimit limit{};
+        getrlimit(RLIMIT_AS, &limit);
+        // the address space in use now, plus 1 GiB: room for the data, not for the claim
+        std::ifstream status("/proc/self/status");
+        std::string line;
+        std::uint64_t vm_kib = 0;
+        while (std::getline(status, line))
+            if (line.rfind("VmSize:", 0) == 0) vm_kib = std::stoull(line.substr(7));
+        limit.rlim_cur = rlim_t(vm_kib * 1024 + (std::uint64_t(1) << 30));
+        setrlimit(RLIMIT_AS, &limit);
+        std::istringstream in(packed + std::string(std::size_t(3) << 20, '\0'));  // a 3 MB input
+        try {
+            inflate_exactly(in, claim, packed.size() + (std::size_t(3) << 20));
+        } catch (const ZlibError& e) {
+            _exit(e.kind() == ZlibError::Kind::ended_early && e.produced() == zeros.size() ? 0 : 2);
+        } catch (const std::bad_alloc&) {
+            _exit(3);
+        }
+        _exit(4);
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "2: another error; 3: the claim was allocated (bad_alloc); 4: no error";
+#endif
 }
 
 TEST(ZlibStream, ReadsNoMoreThanItsAllowance)
