@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <unistd.h>
 
 #include "app/commands.hpp"
 #include "app/terminal_progress.hpp"
@@ -38,16 +40,19 @@ struct Plan {
     bool plus_grid = false;
     std::optional<std::array<int, 6>> extent;  // with origin: the grid the configuration fixes
     glm::dvec3 origin{0.0};
+    std::string clip_at;                        // "FILE:LINE: VolumeReconstruction", where the clip rectangle is given
+    std::string extent_at;                      // the same for OutputOrigin and OutputExtent
+    std::vector<io::PlusConfigTransform> config_transforms;
     std::vector<std::string> warnings;
 };
 
 Plan make_plan(const ReconstructArgs& args)
 {
     Plan plan;
-    plan.options.memory_budget_bytes = std::uint64_t(args.budget_mb) << 20;
     if (!args.config.empty()) {
         const io::PlusConfig config = io::read_plus_config(args.config);
         plan.warnings = config.warnings;
+        plan.config_transforms = config.transforms;
         for (const io::PlusConfigTransform& t : config.transforms) {
             try {
                 plan.calibration.set(t.from, t.to, t.matrix, t.valid);
@@ -60,6 +65,8 @@ Plan make_plan(const ReconstructArgs& args)
         plan.fill_holes = false;
         plan.plus_grid = true;
         if (const auto& r = config.reconstruction) {
+            const std::string at = args.config.string() + ":" + std::to_string(r->line) + ": VolumeReconstruction";
+            plan.clip_at = plan.extent_at = at;
             if (r->output_spacing) plan.spacing = *r->output_spacing;
             if (r->output_origin) plan.origin = *r->output_origin, plan.extent = r->output_extent;
             if (r->clip_size && (*r->clip_size)[0] > 0 && (*r->clip_size)[1] > 0) {
@@ -95,8 +102,13 @@ Plan make_plan(const ReconstructArgs& args)
                                                                 : echo::Compounding::mean;
     if (args.fill_holes) plan.fill_holes = *args.fill_holes == "on";
     if (args.grid) plan.plus_grid = *args.grid == "plus";
-    if (args.voxel_mm && plan.extent) {
-        plan.warnings.push_back(args.config.string() + ": OutputOrigin and OutputExtent are for the configuration's OutputSpacing; "
+    // the configuration's fixed grid gives way to the command line's choice of grid or voxel
+    if (args.grid && plan.extent) {
+        plan.warnings.push_back(plan.extent_at + ": OutputOrigin and OutputExtent are not used: --grid " + *args.grid +
+                                " makes the grid from the frames");
+        plan.extent.reset();
+    } else if (args.voxel_mm && plan.extent) {
+        plan.warnings.push_back(plan.extent_at + ": OutputOrigin and OutputExtent are for the configuration's OutputSpacing; "
                                 "with --voxel-mm the grid is made from the frames instead");
         plan.extent.reset();
     }
@@ -108,6 +120,49 @@ const char* name_of(echo::Splat s) { return s == echo::Splat::nearest ? "nearest
 const char* name_of(echo::Compounding c)
 {
     return c == echo::Compounding::mean ? "mean" : c == echo::Compounding::max ? "maximum" : "latest";
+}
+
+// --budget-mb as bytes (unset: 4 GiB); nullopt (and said) when its bytes overflow 64 bits (where
+// they used to wrap to a small or zero budget) or exceed the machine's memory.
+std::optional<std::uint64_t> budget_bytes(std::optional<std::uint64_t> option)
+{
+    if (!option) return std::uint64_t(4096) << 20;
+    const std::uint64_t mb = *option;
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    const std::uint64_t machine = pages > 0 && page > 0 ? std::uint64_t(pages) * std::uint64_t(page) : 0;
+    if (mb == 0) {
+        std::fprintf(stderr, "echosim reconstruct: --budget-mb 0: the budget must be at least 1 MiB\n");
+        return std::nullopt;
+    }
+    if (mb > (std::numeric_limits<std::uint64_t>::max() >> 20)) {
+        std::fprintf(stderr, "echosim reconstruct: --budget-mb %llu: that many MiB overflow 64 bits of bytes\n",
+                     static_cast<unsigned long long>(mb));
+        return std::nullopt;
+    }
+    if (machine > 0 && (mb << 20) > machine) {
+        std::fprintf(stderr, "echosim reconstruct: --budget-mb %llu: more than this machine's memory (%llu MiB)\n",
+                     static_cast<unsigned long long>(mb), static_cast<unsigned long long>(machine >> 20));
+        return std::nullopt;
+    }
+    return mb << 20;
+}
+
+// A configuration's transform that the recording holds too is not replaced unsaid (issue 34): the
+// recording's is used, as resolve_sweep does, and each such transform is named.
+void warn_also_recorded(Plan& plan, const ReconstructArgs& args, const io::PlusRecording& recording)
+{
+    io::TransformRepository config;
+    for (const io::PlusConfigTransform& t : plan.config_transforms) config.set(t.from, t.to, t.matrix, t.valid);
+    for (const io::AlsoRecorded& a : io::transforms_also_recorded(recording, config)) {
+        int line = 0;
+        std::string given;
+        for (const io::PlusConfigTransform& t : plan.config_transforms)
+            if ((t.from == a.from && t.to == a.to) || (t.from == a.to && t.to == a.from)) line = t.line, given = t.from + "To" + t.to;
+        const std::string where = a.frames == 0 ? "file-wide" : "in " + std::to_string(a.frames) + " of its frames";
+        plan.warnings.push_back(args.config.string() + ":" + std::to_string(line) + ": Transform: " + given + " is also in " +
+                                args.sweep.string() + " (" + a.from + "To" + a.to + "Transform, " + where +
+                                "): the recording's is used, the configuration's is not");
+    }
 }
 
 std::filesystem::path labels_path(const std::filesystem::path& out)
@@ -154,13 +209,24 @@ int run_reconstruct(const ReconstructArgs& args)
         std::fprintf(stderr, "echosim reconstruct: --out %s: write a volume as .nrrd, .mha or .mhd\n", args.out.c_str());
         return kExitBadInput;
     }
+    const std::optional<std::uint64_t> budget = budget_bytes(args.budget_mb);
+    if (!budget) return kExitBadInput;
     Plan plan;
     io::Sweep sweep, labels;
     try {
         plan = make_plan(args);
+        plan.options.memory_budget_bytes = *budget;
         io::PlusRecording recording = io::read_plus_recording(args.sweep);
         if (plan.reference_frame.empty())
             plan.reference_frame = args.config.empty() ? io::default_reference_frame(recording) : "Reference";
+        if (plan.image_frame == plan.reference_frame) {
+            std::fprintf(stderr,
+                         "echosim reconstruct: the image frame and the reference frame are both %s: every frame would be "
+                         "reconstructed at the identity, all in one plane (choose another --image-to-reference)\n",
+                         plan.image_frame.c_str());
+            return kExitBadInput;
+        }
+        if (!args.config.empty()) warn_also_recorded(plan, args, recording);
         sweep = io::resolve_sweep(args.sweep, std::move(recording), plan.calibration, plan.image_frame, plan.reference_frame);
         if (std::filesystem::exists(label_sweep_path(args.sweep))) labels = io::read_plus_sequence(label_sweep_path(args.sweep));
     } catch (const std::runtime_error& e) {  // the file readers' errors, each naming its file and field
@@ -188,6 +254,32 @@ int run_reconstruct(const ReconstructArgs& args)
 
     echo::ReconstructOptions& options = plan.options;
     options.output_type = sweep.pixel_type;  // the volume keeps the recording's values, as PLUS's does
+    // what would give a collapsed or empty volume, refused before the work (issue 34)
+    const std::optional<echo::PixelRect> kept = echo::clip_to_frame(options.clip, sweep.width, sweep.height);
+    if (!kept) {
+        std::fprintf(stderr,
+                     "echosim reconstruct: %s: ClipRectangleOrigin %u %u lies outside the frames of %u x %u pixels: no pixel "
+                     "would be pasted\n",
+                     plan.clip_at.c_str(), options.clip.x0, options.clip.y0, sweep.width, sweep.height);
+        return kExitBadInput;
+    }
+    if (options.clip.x1 != UINT32_MAX && (options.clip.x1 >= sweep.width || options.clip.y1 >= sweep.height))
+        std::fprintf(stderr, "echosim reconstruct: warning: %s: the clip rectangle reaches past the frames of %u x %u pixels: cut to them\n",
+                     plan.clip_at.c_str(), sweep.width, sweep.height);
+    options.clip = *kept;
+    const double thickness = echo::sweep_thickness(valid_transforms, *kept);
+    if (thickness <= 1e-6 * echo::frame_diagonal(valid_transforms, *kept)) {
+        const bool same = std::all_of(valid_transforms.begin(), valid_transforms.end(),
+                                      [&](const glm::dmat4& m) { return m == valid_transforms.front(); });
+        std::fprintf(stderr,
+                     "echosim reconstruct: %s: the %zu frames lie in one plane (%s): they span no volume; is %sTo%s the "
+                     "transform meant?\n",
+                     args.sweep.c_str(), valid_transforms.size(),
+                     valid_transforms.size() == 1 ? "there is one" : same ? "every frame has the same ImageToReference"
+                                                                          : "they move only within it",
+                     plan.image_frame.c_str(), plan.reference_frame.c_str());
+        return kExitBadInput;
+    }
     std::unique_ptr<echo::Reconstructor> r;
     try {
         echo::VoxelGrid grid;
@@ -202,6 +294,20 @@ int run_reconstruct(const ReconstructArgs& args)
             const echo::SweepBox box = echo::sweep_box(valid_transforms, sweep.width, sweep.height);
             const glm::dvec3 margin(options.voxel_mm);
             grid = echo::box_grid(box.lo - margin, box.hi + margin, options.voxel_mm, box.axes);
+        }
+        if (plan.extent && !echo::frames_reach(grid, valid_transforms, *kept)) {
+            const glm::dvec3 far = grid.origin + grid.spacing * glm::dvec3(double(grid.size[0] - 1), double(grid.size[1] - 1),
+                                                                          double(grid.size[2] - 1));
+            const echo::VoxelGrid theirs = echo::plus_grid(valid_transforms, sweep.width, sweep.height, *kept, plan.spacing);
+            const glm::dvec3 their_far = theirs.origin + theirs.spacing * glm::dvec3(double(theirs.size[0] - 1),
+                                                                                   double(theirs.size[1] - 1), double(theirs.size[2] - 1));
+            std::fprintf(stderr,
+                         "echosim reconstruct: %s: the output grid of OutputOrigin and OutputExtent (%g %g %g to %g %g %g mm) is "
+                         "reached by none of the %zu frames (they lie within %g %g %g to %g %g %g mm in %s)\n",
+                         plan.extent_at.c_str(), grid.origin.x, grid.origin.y, grid.origin.z, far.x, far.y, far.z,
+                         valid_transforms.size(), theirs.origin.x, theirs.origin.y, theirs.origin.z, their_far.x, their_far.y,
+                         their_far.z, plan.reference_frame.c_str());
+            return kExitBadInput;
         }
         r = std::make_unique<echo::Reconstructor>(grid, options);
     } catch (const std::exception& e) {
@@ -229,6 +335,14 @@ int run_reconstruct(const ReconstructArgs& args)
         progress(inserting, double(inserted) / double(valid_transforms.size()));
     }
     const double insert_s = std::chrono::duration<double>(clock::now() - t0).count();
+    if (r->filled_voxels() == 0) {
+        progress.finish();
+        std::fprintf(stderr,
+                     "echosim reconstruct: no pixel of the %zu frames landed in the grid (outside it, or below the pixel "
+                     "rejection threshold): nothing written\n",
+                     inserted);
+        return kExitBadInput;
+    }
     const double covered = double(r->filled_voxels()) / double(r->voxel_count());
     int passes = 0;
     double fill_s = 0;

@@ -131,7 +131,7 @@ struct ReconstructArgs {
     std::optional<std::string> compound;      // mean | max | latest
     std::optional<std::string> fill_holes;    // on | off
     std::optional<std::string> grid;          // plus | sweep (default: plus with --config, else sweep)
-    std::uint64_t budget_mb = 4096;
+    std::optional<std::uint64_t> budget_mb;   // [MiB] default 4096; refused past 64 bits of bytes or the machine's memory
     bool gzip = false;
 };
 int run_reconstruct(const ReconstructArgs& args);

@@ -87,6 +87,66 @@ VoxelGrid plus_grid(std::span<const glm::dmat4> frames, std::uint32_t width, std
     return g;
 }
 
+std::optional<PixelRect> clip_to_frame(const PixelRect& clip, std::uint32_t width, std::uint32_t height)
+{
+    if (width == 0 || height == 0 || clip.x0 >= width || clip.y0 >= height || clip.x1 < clip.x0 || clip.y1 < clip.y0)
+        return std::nullopt;
+    return PixelRect{clip.x0, clip.y0, std::min(clip.x1, width - 1), std::min(clip.y1, height - 1)};
+}
+
+namespace {
+
+// The rectangle's corner pixels (their centres) in world.
+std::array<glm::dvec3, 4> corners(const glm::dmat4& m, const PixelRect& rect)
+{
+    const double x0 = rect.x0, x1 = rect.x1, y0 = rect.y0, y1 = rect.y1;
+    return {glm::dvec3(m * glm::dvec4(x0, y0, 0, 1)), glm::dvec3(m * glm::dvec4(x1, y0, 0, 1)),
+            glm::dvec3(m * glm::dvec4(x0, y1, 0, 1)), glm::dvec3(m * glm::dvec4(x1, y1, 0, 1))};
+}
+
+}  // namespace
+
+double sweep_thickness(std::span<const glm::dmat4> frames, const PixelRect& rect)
+{
+    if (frames.empty()) return 0;
+    const glm::dmat4& first = frames.front();
+    const glm::dvec3 cross = glm::cross(glm::dvec3(first[0]), glm::dvec3(first[1]));
+    if (!(glm::length(cross) > 0)) return 0;  // a frame flattened to a line: no plane, no volume
+    const glm::dvec3 n = glm::normalize(cross), o(first[3]);
+    double most = 0;
+    for (const glm::dmat4& m : frames)
+        for (const glm::dvec3& p : corners(m, rect)) most = std::max(most, std::abs(glm::dot(n, p - o)));
+    return most;
+}
+
+double frame_diagonal(std::span<const glm::dmat4> frames, const PixelRect& rect)
+{
+    double most = 0;
+    for (const glm::dmat4& m : frames) {
+        const auto c = corners(m, rect);
+        most = std::max({most, glm::length(c[3] - c[0]), glm::length(c[2] - c[1])});
+    }
+    return most;
+}
+
+bool frames_reach(const VoxelGrid& grid, std::span<const glm::dmat4> frames, const PixelRect& rect)
+{
+    const glm::dmat3 to_map = glm::transpose(grid.axes);
+    const glm::dvec3 half = 0.5 * grid.spacing;
+    const glm::dvec3 lo = grid.origin - half;
+    const glm::dvec3 hi = grid.origin + grid.spacing * glm::dvec3(double(grid.size[0] - 1), double(grid.size[1] - 1),
+                                                                  double(grid.size[2] - 1)) + half;
+    for (const glm::dmat4& m : frames) {
+        glm::dvec3 a(std::numeric_limits<double>::max()), b(std::numeric_limits<double>::lowest());
+        for (const glm::dvec3& p : corners(m, rect)) {
+            a = glm::min(a, to_map * p);
+            b = glm::max(b, to_map * p);
+        }
+        if (a.x <= hi.x && a.y <= hi.y && a.z <= hi.z && b.x >= lo.x && b.y >= lo.y && b.z >= lo.z) return true;
+    }
+    return false;
+}
+
 std::uint64_t VoxelGrid::voxel_count() const
 {
     std::uint64_t n = 1;

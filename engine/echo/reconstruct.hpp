@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -71,6 +72,21 @@ VoxelGrid box_grid(const glm::dvec3& lo, const glm::dvec3& hi, double voxel_mm, 
 // not positive.
 VoxelGrid plus_grid(std::span<const glm::dmat4> image_to_reference, std::uint32_t width, std::uint32_t height,
                     const PixelRect& clip, const glm::dvec3& spacing);
+
+// What a clip rectangle keeps of a width x height frame (clamped to it); nullopt when it keeps no
+// pixel, its origin past the frame's last column or row.
+std::optional<PixelRect> clip_to_frame(const PixelRect& clip, std::uint32_t width, std::uint32_t height);
+
+// [mm] How far the corners of the frames' rectangles (`rect`, pixels kept, in every frame) lie from
+// the first frame's plane, at most: (almost) 0 when every frame lies in one plane, as when each
+// frame's ImageToReference is the same (the identity, say): such a sweep spans no volume.
+double sweep_thickness(std::span<const glm::dmat4> image_to_world, const PixelRect& rect);
+// [mm] The longest diagonal of a frame's rectangle: what sweep_thickness is judged against.
+double frame_diagonal(std::span<const glm::dmat4> image_to_world, const PixelRect& rect);
+
+// Whether any frame's rectangle (`rect`) comes within half a voxel of the grid's box, judged by the
+// rectangle's bounding box in the grid's axes: false means no pixel can land in the grid.
+bool frames_reach(const VoxelGrid& grid, std::span<const glm::dmat4> image_to_world, const PixelRect& rect);
 
 // The reconstruction's working memory for a grid: what the budget is checked on.
 std::uint64_t reconstruction_bytes(const VoxelGrid& grid);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -231,6 +232,175 @@ TEST(PlusReconstruction, AKnownObjectLandsAtItsTruePositionAndSize)
     EXPECT_FALSE(std::filesystem::exists(args.out));
     std::filesystem::remove(sweep);
     std::filesystem::remove(config);
+}
+
+// ---- issue 34: collapsed or empty volumes are refused, the command line overrides the file ------
+
+// A run's exit status and what it said on stderr.
+struct Outcome {
+    int rc = -1;
+    std::string err;
+};
+Outcome run_captured(const ReconstructArgs& args)
+{
+    testing::internal::CaptureStderr();
+    Outcome r;
+    r.rc = run_reconstruct(args);
+    r.err = testing::internal::GetCapturedStderr();
+    return r;
+}
+
+// Ten frames of 8 x 6 pixels at 0.5 mm, 1 mm apart along z, through ImageToProbe from a
+// configuration (`transform`: its Transform element's attributes) and `reconstruction`.
+struct SmallCase {
+    std::filesystem::path sweep, config;
+    ReconstructArgs args(const std::string& out) const
+    {
+        ReconstructArgs a;
+        a.sweep = sweep;
+        a.config = config;
+        a.out = temp(out);
+        return a;
+    }
+};
+SmallCase small_case(const std::string& name, const std::string& image_to_probe_matrix, const std::string& reconstruction,
+                     const std::function<glm::dmat4(int)>& probe_to_tracker = {})
+{
+    std::vector<RecordedFrame> frames;
+    for (int k = 0; k < 10; ++k) {
+        RecordedFrame f;
+        f.probe_to_tracker = probe_to_tracker ? probe_to_tracker(k) : glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, k));
+        f.pixels.assign(48, std::uint8_t(100 + k));
+        frames.push_back(std::move(f));
+    }
+    SmallCase c{temp(name + ".igs.mha"), temp(name + ".xml")};
+    write_plus_recording(c.sweep, 8, 6, "MF", frames);
+    test::write_bytes(c.config,
+                      "<PlusConfiguration version=\"2.1\">\n<CoordinateDefinitions>\n"
+                      "  <Transform From=\"Image\" To=\"Probe\" Matrix=\"" + image_to_probe_matrix + "\"/>\n"
+                      "</CoordinateDefinitions>\n" + reconstruction + "\n</PlusConfiguration>\n");
+    return c;
+}
+const std::string kHalfMillimetre = "0.5 0 0 0  0 0.5 0 0  0 0 0.5 0  0 0 0 1";
+
+void expect_refused(const Outcome& r, const ReconstructArgs& args, std::initializer_list<const char*> words)
+{
+    EXPECT_EQ(r.rc, kExitBadInput) << r.err;
+    for (const char* w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "'" << w << "' not in:\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(args.out)) << "a volume was written";
+    std::filesystem::remove(args.out);
+}
+
+// The same small case is reconstructed (exit 0) when nothing is wrong with it: what the refusals
+// below change is only the one thing they name.
+TEST(PlusReconstructionChecks, TheSmallCaseItselfReconstructs)
+{
+    const SmallCase c = small_case("fine", kHalfMillimetre, "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\"/>");
+    const ReconstructArgs args = c.args("fine.nrrd");
+    const Outcome r = run_captured(args);
+    EXPECT_EQ(r.rc, kExitOk) << r.err;
+    const io::Volume v = io::read_volume(args.out);
+    EXPECT_EQ(v.size, (std::array<std::size_t, 3>{8, 6, 19}));  // 3.5 x 2.5 x 9 mm at 0.5 mm
+    std::filesystem::remove(args.out);
+}
+
+// Every frame at the identity (the probe never moved, a recording of ImageToReference = 1), and the
+// reference frame named as the image's own: all frames in one plane, refused.
+TEST(PlusReconstructionChecks, FramesInOnePlaneAreRefused)
+{
+    const SmallCase still = small_case("still", kHalfMillimetre, "", [](int) { return glm::dmat4(1.0); });
+    ReconstructArgs args = still.args("still.nrrd");
+    expect_refused(run_captured(args), args, {"one plane", "the same ImageToReference"});
+
+    // sliding within the frames' own plane spans no volume either
+    const SmallCase sliding = small_case("sliding", kHalfMillimetre, "",
+                                         [](int k) { return glm::translate(glm::dmat4(1.0), glm::dvec3(k, 0.5 * k, 0)); });
+    args = sliding.args("sliding.nrrd");
+    expect_refused(run_captured(args), args, {"one plane", "move only within it"});
+
+    const SmallCase fine = small_case("itself", kHalfMillimetre, "");
+    args = fine.args("itself.nrrd");
+    args.image_to_reference = "Image";
+    expect_refused(run_captured(args), args, {"both Image", "one plane"});
+}
+
+// A calibration that flattens the image to a line, and a tracker transform that is singular.
+TEST(PlusReconstructionChecks, ASingularCalibrationOrChainIsRefusedByName)
+{
+    // ImageToProbe's columns 0 and 1 parallel: every pixel of a row and a column on one line
+    const SmallCase line = small_case("line", "0.5 0.5 0 0  0 0 0 0  0 0 0.5 0  0 0 0 1", "");
+    ReconstructArgs args = line.args("line.nrrd");
+    expect_refused(run_captured(args), args, {"ImageToProbe", "singular", "Seq_Frame0000"});
+
+    // ProbeToTracker of frame 3 scaled to nothing along z
+    const SmallCase flat = small_case("flat", kHalfMillimetre, "", [](int k) {
+        glm::dmat4 m = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, k));
+        if (k == 3) m[1] = glm::dvec4(0, 0, 0, 0);
+        return m;
+    });
+    args = flat.args("flat.nrrd");
+    expect_refused(run_captured(args), args, {"Seq_Frame0003", "ProbeToTracker", "singular"});
+}
+
+// ClipRectangleOrigin past the frames: refused before any memory is taken for a grid (it spanned
+// from the frames to the clip corner: gigabytes).
+TEST(PlusReconstructionChecks, AClipRectangleOutsideTheFramesIsRefused)
+{
+    const SmallCase c = small_case("clip", kHalfMillimetre,
+                                   "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\" ClipRectangleOrigin=\"4000 3000\" "
+                                   "ClipRectangleSize=\"10 10\"/>");
+    const ReconstructArgs args = c.args("clip.nrrd");
+    expect_refused(run_captured(args), args, {"ClipRectangleOrigin 4000 3000", "outside the frames of 8 x 6", "clip.xml:"});
+}
+
+// OutputOrigin/OutputExtent 1 m away from every frame: refused; and with --grid sweep the frames'
+// own grid is used instead, as the README says of command-line options, with a warning.
+TEST(PlusReconstructionChecks, AnOutputGridNoFrameReachesIsRefusedAndGridOverridesIt)
+{
+    const SmallCase c = small_case("away", kHalfMillimetre,
+                                   "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\" OutputOrigin=\"1000 0 0\" "
+                                   "OutputExtent=\"0 9 0 9 0 9\"/>");
+    ReconstructArgs args = c.args("away.nrrd");
+    expect_refused(run_captured(args), args, {"OutputOrigin and OutputExtent", "reached by none of the 10 frames"});
+
+    for (const char* grid : {"sweep", "plus"}) {
+        args.grid = grid;
+        const Outcome r = run_captured(args);
+        ASSERT_EQ(r.rc, kExitOk) << r.err;
+        EXPECT_NE(r.err.find(std::string("not used: --grid ") + grid), std::string::npos) << r.err;
+        const io::Volume v = io::read_volume(args.out);
+        EXPECT_LT(v.origin.x, 10.0) << grid << ": the frames' grid, not the configuration's at x = 1000 mm";
+        std::filesystem::remove(args.out);
+    }
+}
+
+// The recording holds ImageToProbe too (file-wide): the recording's is used, and the
+// configuration's is named in a warning, not replaced unsaid.
+TEST(PlusReconstructionChecks, AConfigurationTransformTheRecordingAlsoHoldsIsNamed)
+{
+    const SmallCase c = small_case("twice", kHalfMillimetre, "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\"/>");
+    std::string recording = test::read_bytes(c.sweep);
+    recording = test::with(recording, "ElementType = MET_UCHAR", "ImageToProbeTransform = 0.5 0 0 0 0 0.5 0 0 0 0 0.5 0 0 0 0 1\nElementType = MET_UCHAR");
+    test::write_bytes(c.sweep, recording);
+    const ReconstructArgs args = c.args("twice.nrrd");
+    const Outcome r = run_captured(args);
+    EXPECT_EQ(r.rc, kExitOk) << r.err;
+    EXPECT_NE(r.err.find("twice.xml:3: Transform: ImageToProbe is also in"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the recording's is used"), std::string::npos) << r.err;
+    std::filesystem::remove(args.out);
+}
+
+// --budget-mb values whose bytes wrap past 64 bits (2^44 MiB is 2^64 bytes: 0 once shifted) or
+// exceed any machine's memory are refused naming the option.
+TEST(PlusReconstructionChecks, BudgetsThatWrapOrExceedTheMachineAreRefused)
+{
+    const SmallCase c = small_case("budget", kHalfMillimetre, "");
+    ReconstructArgs args = c.args("budget.nrrd");
+    for (const std::uint64_t mb : {std::uint64_t(1) << 44, (std::uint64_t(1) << 44) + 16, std::uint64_t(1) << 40, UINT64_MAX,
+                                   std::uint64_t(0)}) {
+        args.budget_mb = mb;
+        expect_refused(run_captured(args), args, {"--budget-mb"});
+    }
 }
 
 }  // namespace
