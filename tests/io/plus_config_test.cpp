@@ -168,7 +168,7 @@ TEST(PlusConfig, RefusesAConfigurationPastOneMebibyteAndReadsManyTransforms)
     ASSERT_LT(text.size(), std::size_t(1) << 20);
     const auto path = temp("many.xml");
     write_bytes(path, text);
-    EXPECT_EQ(read_plus_config(path).transforms.size(), 10001u);  // and the calibration of kConfig
+    EXPECT_EQ(read_plus_config(path).transforms.size(), 10002u);  // and the two of kConfig
     std::filesystem::remove(path);
     EXPECT_NE(error_of(with(text, "</CoordinateDefinitions>",
                             R"(<Transform From="B9999" To="A9999" Matrix="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/></CoordinateDefinitions>)"))
