@@ -10,7 +10,9 @@
 #include "device/hid_devices.hpp"
 #include "device/mouse_keyboard_device.hpp"
 #include "device/null_device.hpp"
+#include "device/openhaptics_device.hpp"
 #include "device/scripted_device.hpp"
+#include "device/simulated_arm.hpp"
 
 namespace echosim::app {
 namespace {
@@ -20,6 +22,7 @@ struct Listed {
     bool available = false;
     std::string status;  // when it can be used, or why not and what to do
     const device::FoundDevice* hid = nullptr;
+    const device::OpenHapticsProbe* arm = nullptr;
 };
 
 const char* control_name(device::Control c)
@@ -36,7 +39,7 @@ std::string force_text(const device::Capabilities& c)
 {
     if (!c.has_force()) return "none";
     char s[96];
-    std::snprintf(s, sizeof s, "%.1f N, %.2f N/mm", c.max_force_N, c.max_stiffness_N_per_mm);
+    std::snprintf(s, sizeof s, "%.2f N, %.2f N/mm", c.max_force_N, c.max_stiffness_N_per_mm);
     return s;
 }
 
@@ -59,6 +62,12 @@ int run_devices(const DevicesArgs& args)
     const device::ScriptedDevice scripted(
         device::Trajectory::parse(std::string(device::Trajectory::kHeader) + "\n0,0,0,0,1,0,0,0\n", "example"), "a trajectory CSV");
     listed.push_back({scripted.capabilities(), true, "give a trajectory CSV (--trajectory F.csv)"});
+    listed.push_back({device::SimulatedArm().capabilities(), true,
+                      "always available (echosim run --device simulated-arm): a simulated hand presses a simulated arm"});
+
+    // a Touch/Phantom through OpenHaptics, if its library is installed and an arm answers
+    const device::OpenHapticsProbe arm = device::probe_openhaptics();
+    listed.push_back({arm.capabilities, arm.available, arm.status, nullptr, &arm});
 
     const std::shared_ptr<device::HidBackend> hid = device::hidapi_backend();
     const std::vector<device::FoundDevice> spacemice = device::find_spacemice(*hid);
@@ -85,6 +94,11 @@ int run_devices(const DevicesArgs& args)
                 j["product_id"] = hex4(l.hid->hid.product_id);
                 j["serial"] = l.hid->hid.serial;
                 j["accessible"] = l.hid->accessible;
+            }
+            if (l.arm != nullptr) j["library_found"] = l.arm->library_found;
+            if (c.has_force()) {
+                j["max_stiffness_N_per_mm"] = c.max_stiffness_N_per_mm;
+                j["workspace_mm"] = {c.workspace_mm.x(), c.workspace_mm.y(), c.workspace_mm.z()};
             }
             all.push_back(std::move(j));
         }

@@ -83,7 +83,7 @@ struct RunArgs {
     std::filesystem::path labels;  // with --volume: its tissue labels (empty: linear deformation)
     std::string case_name = "healthy";
     std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
-    std::string device = "mouse";      // mouse, spacemouse or null
+    std::string device = "mouse";      // mouse, spacemouse, openhaptics, simulated-arm or null
     std::filesystem::path trajectory;  // a scripted trajectory CSV instead of a device
     // --igtl [PORT]: serve the live image and probe over OpenIGTLink on this port, as written
     // (validated by run_window: 1..65535); empty: no link

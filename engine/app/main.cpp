@@ -73,8 +73,10 @@ int main(int argc, char** argv)
     run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
     run_cmd->add_option("--model", run.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
     run_cmd->add_option("--case", run.case_name, "healthy, dvt-acute or dvt-chronic");
-    run_cmd->add_option("--device", run.device, "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), null")
-        ->check(CLI::IsMember({"mouse", "spacemouse", "null"}));
+    run_cmd->add_option("--device", run.device,
+                        "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), openhaptics (a 3D Systems "
+                        "Touch/Phantom arm, force feedback), simulated-arm (a simulated hand on a simulated arm, force feedback), null")
+        ->check(CLI::IsMember({"mouse", "spacemouse", "openhaptics", "simulated-arm", "null"}));
     run_cmd->add_option("--trajectory", run.trajectory, "play this trajectory CSV (t_s,x_mm,y_mm,z_mm,qw,qx,qy,qz) instead of a device");
     const std::string igtl_port = std::to_string(echosim::igtl::kDefaultPort);
     run_cmd->add_option("--igtl", run.igtl_port,
