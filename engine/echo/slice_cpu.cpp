@@ -11,6 +11,23 @@
 namespace echosim::echo {
 namespace {
 
+// The two voxels a trilinear sample at index `p` (inside [0, size - 1]) blends along one axis, and
+// the second one's weight. The pair is the last two voxels at the axis's far end; an axis one voxel
+// long (a 2-D image, read as one slice) blends its voxel with itself, as the GPU's sampler clamps to
+// the edge.
+// (In the scalar of the caller, so each twin keeps its arithmetic.)
+template <class T>
+struct Taps {
+    std::size_t at[2];
+    T f;
+};
+template <class T>
+Taps<T> taps(T p, std::size_t size)
+{
+    const std::size_t lo = std::min(std::size_t(p), size >= 2 ? size - 2 : 0);
+    return {{lo, std::min(lo + 1, size - 1)}, p - T(lo)};
+}
+
 template <class Sample>
 std::vector<std::uint8_t> slice(const io::Volume& v, const Pose& pose, const ScanSpec& spec, Sample&& sample)
 {
@@ -33,15 +50,12 @@ std::vector<std::uint8_t> slice_grey(const io::Volume& v, const Pose& pose, cons
     return slice(v, pose, spec, [&](const glm::dvec3& p) -> std::uint8_t {
         if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > double(v.size[0] - 1) || p.y > double(v.size[1] - 1) || p.z > double(v.size[2] - 1))
             return 0;
-        const std::size_t i = std::min(std::size_t(p.x), v.size[0] - 2), j = std::min(std::size_t(p.y), v.size[1] - 2),
-                          k = std::min(std::size_t(p.z), v.size[2] - 2);
-        const double fx = p.x - double(i), fy = p.y - double(j), fz = p.z - double(k);
+        const auto x = taps(p.x, v.size[0]), y = taps(p.y, v.size[1]), z = taps(p.z, v.size[2]);
         double s = 0;
         for (int dz = 0; dz < 2; ++dz)
             for (int dy = 0; dy < 2; ++dy)
                 for (int dx = 0; dx < 2; ++dx)
-                    s += (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * (dz ? fz : 1 - fz) *
-                         d[v.index(i + std::size_t(dx), j + std::size_t(dy), k + std::size_t(dz))];
+                    s += (dx ? x.f : 1 - x.f) * (dy ? y.f : 1 - y.f) * (dz ? z.f : 1 - z.f) * d[v.index(x.at[dx], y.at[dy], z.at[dz])];
         return std::uint8_t(std::clamp(s + 0.5, 0.0, 255.0));
     });
 }
@@ -85,14 +99,13 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
             }
             const vec3 index(p.probe_to_index * vec4(pixel_x(c, p.pixel_x_mm, p.width_mm), y, 0.0f, 1.0f));
             if (inside_volume(index, size)) {
-                const vec3 lo = min(floor(index), size - 2.0f), f = index - lo;
-                const auto x0 = std::size_t(lo.x), y0 = std::size_t(lo.y), z0 = std::size_t(lo.z);
+                const auto tx = taps(index.x, volume.size[0]), ty = taps(index.y, volume.size[1]), tz = taps(index.z, volume.size[2]);
                 float s = 0;
                 for (int dz = 0; dz < 2; ++dz)
                     for (int dy = 0; dy < 2; ++dy)
                         for (int dx = 0; dx < 2; ++dx)
-                            s += (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z) *
-                                 float(g[volume.index(x0 + std::size_t(dx), y0 + std::size_t(dy), z0 + std::size_t(dz))]);
+                            s += (dx ? tx.f : 1 - tx.f) * (dy ? ty.f : 1 - ty.f) * (dz ? tz.f : 1 - tz.f) *
+                                 float(g[volume.index(tx.at[dx], ty.at[dy], tz.at[dz])]);
                 out.grey[i] = s;
             }
             if (want_labels && l) {
