@@ -13,6 +13,7 @@
 #include "io/owned_temp.hpp"
 #include "io/partial_file.hpp"
 #include "io/text_fields.hpp"
+#include "scene/leg.hpp"
 #include "tissue/tissue_json.hpp"
 
 namespace echosim::app {
@@ -112,7 +113,9 @@ bool read_model_option(const char* command, const std::filesystem::path& file, s
 {
     if (file.empty()) return true;
     try {
-        tissue = tissue::read_tissue_model(file).samples;
+        const tissue::TissueModel read = tissue::read_tissue_model(file);
+        tissue::check_derived_fields(file, read, tissue::build_tissue_model(scene::LegModel{}, read.samples, read.refine));
+        tissue = read.samples;
     } catch (const tissue::ModelFileError& e) {
         std::fprintf(stderr, "echosim %s: --model: %s\n", command, e.what());
         return false;

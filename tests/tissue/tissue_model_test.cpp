@@ -6,11 +6,13 @@
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "scene/leg.hpp"
 #include "tissue/nonlinear_spring.hpp"
 #include "tissue/physical_ranges.hpp"
+#include "io/json_text.hpp"
 #include "tissue/tissue_json.hpp"
 #include "test_files.hpp"
 
@@ -138,7 +140,11 @@ TEST(TissueJson, BadFilesNameTheField)
         EXPECT_NE(at, std::string::npos) << from;
         return t.replace(at, from.size(), to);
     };
-    EXPECT_NE(message(replaced("\"lambda_N_per_mm\"", "\"lambda_typo\"")).find("'lambda_N_per_mm': missing"), std::string::npos);
+    // a misspelt field is named as unknown before the one it was meant to be is found missing
+    EXPECT_NE(message(replaced("\"lambda_N_per_mm\"", "\"lambda_typo\"")).find("'lambda_typo': unknown field"), std::string::npos);
+    nlohmann::json without = nlohmann::json::parse(text);
+    without.erase("lambda_N_per_mm");
+    EXPECT_NE(message(without.dump()).find("'lambda_N_per_mm': missing"), std::string::npos);
     EXPECT_NE(message(replaced("\"refine\": 1", "\"refine\": 2")).find("'grid'"), std::string::npos);
     EXPECT_NE(message(text.substr(0, text.size() / 2)).find("not valid JSON"), std::string::npos);
     EXPECT_NE(message(replaced("\"format\": \"echosim-tissue-model\"", "\"format\": \"other\"")).find("'format'"), std::string::npos);
@@ -146,10 +152,73 @@ TEST(TissueJson, BadFilesNameTheField)
     // wrong type where value() was used, and 1e300 was cast to int
     EXPECT_NE(message(replaced("\"lambda_N_per_mm\": ", "\"lambda_N_per_mm\": 1e999, \"x\": ")).find("not valid JSON"), std::string::npos);
     EXPECT_NE(message(replaced("\"format\": \"echosim-tissue-model\"", "\"format\": 3")).find("'format'"), std::string::npos);
-    EXPECT_NE(message(replaced("\"method\": ", "\"method\": 7, \"x\": ")).find("'fit.method': not a string"),
+    EXPECT_NE(message(replaced("\"method\": \"\"", "\"method\": 7")).find("'fit.method': not a string"), std::string::npos);
+    EXPECT_NE(message(replaced("\"samples\": 0", "\"samples\": 1e300")).find("'fit.samples'"), std::string::npos);
+
+    // issue 34: what nlohmann::json accepts silently, refused by name. A key given twice (json keeps
+    // the last, the first edit lost); a count that is not whole (2.5 rows was read as 2); a field
+    // the reader does not know (a typo's value never reached the simulator)
+    EXPECT_NE(message(replaced("\"refine\": 1", "\"refine\": 1, \"rows\": 8")).find("key \"rows\" given twice in object 'grid'"),
               std::string::npos);
-    EXPECT_NE(message(replaced("\"samples\": ", "\"samples\": 1e300, \"x\": ")).find("'fit.samples'"), std::string::npos);
+    EXPECT_NE(message(replaced("\"lambda_N_per_mm\": ", "\"lambda_N_per_mm\": 1, \"lambda_N_per_mm\": ")).find("given twice in the top-level object"),
+              std::string::npos);
+    EXPECT_NE(message(replaced("\"refine\": 1", "\"refine\": 1.5")).find("'grid.refine': 1.5 is not a whole number"), std::string::npos);
+    EXPECT_NE(message(replaced("\"samples\": 0", "\"samples\": 12.25")).find("'fit.samples': 12.25 is not a whole number"),
+              std::string::npos);
+    EXPECT_EQ(message(replaced("\"refine\": 1", "\"refine\": 1.0")), "no error");  // a whole number written as a float
+    EXPECT_NE(message(replaced("\"a_per_N\"", "\"c_per_N\": [], \"a_per_N\"")).find("'nodes.c_per_N': unknown field"), std::string::npos);
+    EXPECT_NE(message(replaced("\"boundary\": [\n   1", "\"boundary\": [\n   0.5")).find("'nodes.boundary[0]': must be 0 or 1"),
+              std::string::npos);
     std::filesystem::remove(good);
+}
+
+// Issue 34: a model nested 200,000 arrays deep (nothing legitimate is nested deeper than 4), and one
+// whose document would cost gigabytes ("[[],[],...": each 3 bytes a container on the heap), are
+// refused before parsing; a document within the budget is not.
+TEST(TissueJson, NestingAndDocumentSizeAreCappedBeforeParsing)
+{
+    const auto path = temp("deep.json");
+    test::write_bytes(path, std::string(200000, '[') + std::string(200000, ']'));
+    try {
+        read_tissue_model(path);
+        ADD_FAILURE() << "read a model nested 200,000 deep";
+    } catch (const ModelFileError& e) {
+        EXPECT_NE(std::string(e.what()).find("nested deeper than 8 (at byte 8)"), std::string::npos) << e.what();
+    }
+    // 20 MB of empty arrays: about 530 MB of document by the estimate, nlohmann's own layout
+    std::string many = "[";
+    for (int i = 0; i < 7'000'000; ++i) many += "[],";
+    many += "[]]";
+    EXPECT_GT(io::json_document_bytes(many, 8), 7'000'000ull * 64);
+    EXPECT_THROW(io::parse_json_text(many, {8, 256ull << 20}), io::JsonTextError);
+    EXPECT_EQ(io::parse_json_text(many, {8, 1ull << 30}).size(), 7'000'001u);
+    // brackets inside strings are text, not nesting
+    EXPECT_EQ(io::parse_json_text("{\"a\": \"[[[[[[[[[[\"}", {2, 1 << 20})["a"], "[[[[[[[[[[");
+    std::filesystem::remove(path);
+}
+
+// Issue 34: the file's nodes and springs are what `samples` give; a file whose nodes say otherwise
+// is refused naming the node, instead of being silently overruled by the samples.
+TEST(TissueJson, NodesThatDisagreeWithTheSamplesAreRefused)
+{
+    const scene::LegModel leg;
+    const TissueModel built = build_tissue_model(leg, varied_parameters(), 2);
+    EXPECT_NO_THROW(check_derived_fields("m.json", built, build_tissue_model(leg, built.samples, 2)));
+    TissueModel edited = built;
+    edited.b[30] *= 1.5;
+    try {
+        check_derived_fields("m.json", edited, build_tissue_model(leg, edited.samples, 2));
+        ADD_FAILURE() << "an edited node was accepted";
+    } catch (const ModelFileError& e) {
+        EXPECT_NE(std::string(e.what()).find("m.json: field 'nodes.b_mm_per_N[30]'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("edit those"), std::string::npos) << e.what();
+    }
+    edited = built;
+    edited.springs[7].rest_length += 1.0;
+    EXPECT_THROW(check_derived_fields("m.json", edited, build_tissue_model(leg, edited.samples, 2)), ModelFileError);
+    // the shipped thigh is what its samples give
+    const TissueModel thigh = read_tissue_model(std::filesystem::path(ECHOSIM_ASSET_DIR) / "models" / "thigh.json");
+    EXPECT_NO_THROW(check_derived_fields("thigh.json", thigh, build_tissue_model(leg, thigh.samples, thigh.refine)));
 }
 
 // Values inside the reader's number ranges but not a thigh's: refused with the field, the value
