@@ -301,6 +301,14 @@ std::vector<std::uint8_t> read_metaimage_data(std::istream& in, const MetaImageH
             header.fail(where.name, "truncated data: " + std::to_string(found) + " bytes in " + data_path.string() +
                                         (data_in == &in ? " after the header" : "") + ", DimSize and ElementType need " +
                                         std::to_string(bytes));
+        // more data than the header gives is a header that does not describe its data (a wrong
+        // DimSize or ElementType): read as it says, the image would be silently wrong
+        if (data_in->peek() != std::char_traits<char>::eof()) {
+            const std::uint64_t more = text::bytes_left(*data_in);  // unknown (the maximum) on a pipe
+            header.fail(where.name, "the data in " + data_path.string() + " hold " +
+                                        (more == std::numeric_limits<std::uint64_t>::max() ? std::string("more") : std::to_string(more) + (more == 1 ? " byte more" : " bytes more")) +
+                                        " than DimSize and ElementType give (" + std::to_string(bytes) + " bytes)");
+        }
         data = std::move(*raw);
     } else {
         const std::uint64_t left = text::bytes_left(*data_in);

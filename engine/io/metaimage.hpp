@@ -117,7 +117,7 @@ std::uint64_t metaimage_data_bytes(const MetaImageHeader& header, std::uint64_t 
 // of at most CompressedDataSize bytes (the rest of the file when absent), inflated as it streams.
 // BinaryDataByteOrderMSB (or ElementByteOrderMSB) = True data is byte-swapped. Refused by name:
 // BinaryData = False (text data), HeaderSize other than 0, ElementDataFile = LIST or a file pattern
-// (with '%'), a missing data file, truncated or corrupt data, sizes beyond the budget (checked first,
+// (with '%'), a missing data file, truncated or corrupt data, raw data longer than the header gives, sizes beyond the budget (checked first,
 // by metaimage_data_bytes).
 std::vector<std::uint8_t> read_metaimage_data(std::istream& in, const MetaImageHeader& header,
                                               std::uint64_t memory_budget_bytes = default_metaimage_memory_budget);

@@ -234,6 +234,11 @@ TEST(MetaImage, RejectsBadHeadersNamingFileAndField)
     expect_file_error("double.mha", with(good, "MET_UCHAR", "MET_DOUBLE"), {"ElementType", "'MET_DOUBLE' volumes are not supported"});
     expect_file_error("truncated.mha", good.substr(0, good.size() - 1), {"ElementDataFile", "truncated", "23 bytes", "24"});
     expect_file_error("noend.mha", itk_header.substr(0, itk_header.size() - 24), {"truncated header", "ElementDataFile"});
+    // a header that undercounts its data (a DimSize of 4 3 1 over 4 x 3 x 2 voxels) would read a
+    // slice of it as the whole image
+    expect_file_error("longer.mha", with(good, "DimSize = 4 3 2", "DimSize = 4 3 1"),
+                      {"ElementDataFile", "12 bytes more", "(12 bytes)"});
+    expect_file_error("onemore.mha", good + "x", {"ElementDataFile", "1 byte more", "(24 bytes)"});
     expect_file_error("garbage.mha", "\x89PNG\r\n\x1a\n\x00\x00", {"line 1", "not 'Name = Value'"});
     expect_file_error("twice.mha", with(good, "Offset = -10 20 5\n", "Offset = -10 20 5\nOffset = 1 2 3\n"),
                       {"Offset (line 8)", "twice", "line 7"});
