@@ -1,6 +1,8 @@
 #include "io/png.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -32,6 +34,20 @@ void on_png_error(png_structp png, png_const_charp message)
 
 void on_png_warning(png_structp, png_const_charp) {}
 
+// libpng's own writer says only "Write Error"; this one says why (a full disk: "File too large" or
+// "No space left on device"), as every other writer does.
+void write_to_file(png_structp png, png_bytep data, png_size_t n)
+{
+    auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
+    if (std::fwrite(data, 1, n, file) != n) {
+        char why[160];  // no std::string here: png_error jumps out, past any destructor
+        std::snprintf(why, sizeof why, "write failed: %s", std::strerror(errno));
+        png_error(png, why);  // on_png_error copies it before it jumps
+    }
+}
+
+void flush_file(png_structp png) { std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))); }
+
 }  // namespace
 
 void write_png(const std::filesystem::path& path, const RgbaImage& image)
@@ -50,7 +66,7 @@ void write_png(const std::filesystem::path& path, const RgbaImage& image)
         png_destroy_write_struct(&png, &info);
         fail(path, "libpng: " + error);  // `out` removes the partial file
     }
-    png_init_io(png, out.get());
+    png_set_write_fn(png, out.get(), write_to_file, flush_file);
     png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, 3);  // big frames: favour speed over the last few per cent
