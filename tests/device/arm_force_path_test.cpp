@@ -3,7 +3,9 @@
 // moves under it and under the hand holding it, and its pose comes back as the probe's. A hand held
 // 15 mm below the skin does not get there: the handle settles where the coupling's pull equals the
 // force the loop sends, and that force is what the physics says the thigh pushes back with.
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +53,34 @@ TEST(ArmForcePath, TheHandleSettlesWhereTheHandsPullMeetsTheTissuesPush)
     if (s.force.along_N < arm->capabilities().max_force_N) {
         EXPECT_NEAR(s.force.along_N, s.physics_force_N, 0.05 * s.physics_force_N + 0.02);
     }
+}
+
+// The same path in real time, each part on its own thread (the physics, the haptic loop, the arm's
+// servo), then stopped: the loop's last command is a zero force, and the arm applies it from its
+// next servo tick (the order Ctrl-C or SIGTERM stops a run in).
+TEST(ArmForcePath, InRealTimeTheArmFeelsTheThighAndALoopThatStopsLeavesItNoForce)
+{
+    using namespace std::chrono;
+    physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
+    const haptics::ProbeMapping mapping(test::leg());
+    SimulatedArmOptions o;
+    o.hand.kind = HandScript::Kind::hold;
+    o.hand.hold_mm = Eigen::Vector3d(0, -35, 0);
+    auto arm = std::make_shared<SimulatedArm>(o);
+    haptics::HapticOptions ho;
+    ho.realtime_priority = false;  // a test asks for no privileges
+    haptics::HapticLoop loop(physics, arm, mapping, ho);
+    physics.start();
+    loop.start();
+    // the handle starts where the hand holds it, 15 mm into the skin: the loop soon pushes it back
+    const auto give_up = steady_clock::now() + seconds(5);
+    while (arm->applied_force().y() < 0.5 && steady_clock::now() < give_up) std::this_thread::sleep_for(milliseconds(5));
+    EXPECT_GE(arm->applied_force().y(), 0.5) << "the thigh never pushed the handle back";
+    loop.stop();
+    const std::int64_t stopped_at = arm->servo_ticks();
+    while (arm->servo_ticks() < stopped_at + 2 && steady_clock::now() < give_up + seconds(1)) std::this_thread::sleep_for(microseconds(200));
+    EXPECT_EQ(arm->applied_force(), Eigen::Vector3d::Zero());
+    physics.stop();
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 // threaded, its force cut, and a zero force honoured at the next tick.
 #include "device/simulated_arm.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -140,16 +142,21 @@ TEST(SimulatedArm, ItsServoThreadSettlesTheCouplingAndHonoursAZeroForceAtItsNext
         arm.events(events);
         ASSERT_EQ(events.size(), 1u);
         EXPECT_EQ(events[0].kind, DeviceEvent::Kind::connected);
-        // a loop sending the force every millisecond for 0.6 s (the coupling settles in about 0.2 s)
-        const auto until = steady_clock::now() + milliseconds(600);
-        while (steady_clock::now() < until) {
+        // a loop sending the force every millisecond for 0.6 s (the coupling settles in about 0.2 s);
+        // the handle's height read over the last 0.3 s, its median taken: a test thread held up past
+        // kForceHoldS on a loaded machine lets the handle sag for a moment, as it should
+        const auto start = steady_clock::now();
+        std::vector<double> heights;
+        DeviceSample s;
+        while (steady_clock::now() < start + milliseconds(600)) {
             arm.write_force(f);
             std::this_thread::sleep_for(milliseconds(1));
+            if (steady_clock::now() > start + milliseconds(300) && arm.read(0.0, s)) heights.push_back(s.position.y());
         }
-        DeviceSample s;
-        ASSERT_TRUE(arm.read(0.0, s));
-        EXPECT_NEAR(s.position.y(), hand.y() + 1.5 / 0.3, 0.05);  // F/k = 5 mm above the hand
-        EXPECT_GT(arm.servo_ticks(), 300);                          // about 600 at 1 kHz, fewer on a loaded machine
+        ASSERT_GT(heights.size(), 20u);
+        std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+        EXPECT_NEAR(heights[heights.size() / 2], hand.y() + 1.5 / 0.3, 0.05);  // F/k = 5 mm above the hand
+        EXPECT_GT(arm.servo_ticks(), 300);  // about 600 at 1 kHz, fewer on a loaded machine
 
         // the stop's zero: applied from the servo's next tick
         arm.write_force(Eigen::Vector3d::Zero());
