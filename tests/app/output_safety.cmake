@@ -1,8 +1,9 @@
 # What the writing commands do with the paths they are given (README "Output files"): outputs that
 # name the same file as each other or as an input are refused before any work (exit 2, naming both
 # options) and nothing is written; a file the command did not write is never deleted; a name too
-# long once a suffix is added is refused before the work, one that fits is written; a link planted
-# where the temporary once was (OUT.partial) is neither followed nor removed.
+# long once a suffix is added is refused before the work, one that fits is written; what a killed
+# run left is removed by the next write there; a link planted where the temporary once was
+# (OUT.partial) is neither followed nor removed.
 #   cmake -DECHOSIM=... -DWORK=... -P output_safety.cmake
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK}/sub)
@@ -78,6 +79,18 @@ string(REPEAT "m" 251 stem)
 run_echosim(0 measure --out ${WORK}/${stem}.csv)
 if(NOT EXISTS ${WORK}/${stem}.csv)
   message(FATAL_ERROR "measure did not write ${WORK}/${stem}.csv (a 255-byte name)")
+endif()
+
+# what runs killed while writing left (PID 2147483647: above any pid_max, so gone) is removed by the
+# next write there
+file(MAKE_DIRECTORY ${WORK}/killed/.echosim-writing-2147483647-abc123)
+file(WRITE ${WORK}/killed/.echosim-writing-2147483647-abc123/k.mha "half a sweep")
+file(WRITE ${WORK}/killed/m.csv.partial-2147483647-abc123 "half a campaign")
+run_echosim(0 measure --out ${WORK}/killed/m.csv)
+run_echosim(0 phantom --out ${WORK}/killed/k.mha --frames 8 --pixel-mm 0.5)
+file(GLOB left ${WORK}/killed/*.partial-* ${WORK}/killed/.echosim-writing-*)
+if(left)
+  message(FATAL_ERROR "what killed runs left was not removed: ${left}")
 endif()
 
 # a link planted under the name the temporary once had
