@@ -4,12 +4,17 @@
 // demo, there and back, looped, so it renders real contact forces all along. Rows: the loop's rate,
 // its period error against 1 ms (p50, p99, max), the deadlines it missed (woke after the next tick
 // was due), and the cost of one force computation (the local model's force law) on its own.
+// Beside the loop, in the same spell and under the same load, cyclictest at the loop's priority
+// (app/cyclictest.hpp): the machine's own floor. The loop's latest tick (late_max_ms, a tick's start
+// after its deadline) reads against its latest wake-up (cyclictest_max_ms: absent, with the reason
+// in cyclictest_note, where it cannot run); page_faults are the loop's thread's after its start.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <algorithm>
 #include <optional>
 
+#include "app/cyclictest.hpp"
 #include "app/default_scene.hpp"
 #include "app/haptics_demo.hpp"
 #include "app/headless.hpp"
@@ -31,7 +36,8 @@ void haptic_loop_timing(benchmark::State& state, const gpu::ContextOptions& gpu,
                                                             device::ScriptedDevice::Playback::loop);
         app::DefaultScene scene(o);
         haptics::HapticLoop& loop = *scene.session.haptic_loop();
-        if (!scene.session.haptics_note().empty()) state.SetLabel(scene.session.haptics_note());
+        std::string label = scene.session.haptics_note();
+        app::Cyclictest cyclictest(seconds);
         const auto start = std::chrono::steady_clock::now();
         const std::optional<double> steal0 = app::host_steal_s();
         const std::int64_t ticks0 = loop.ticks();
@@ -44,6 +50,8 @@ void haptic_loop_timing(benchmark::State& state, const gpu::ContextOptions& gpu,
             elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
         const std::int64_t ticks = loop.ticks() - ticks0;
+        const app::CyclictestResult floor = cyclictest.finish();
+        const bool memory_locked = loop.memory_locked();  // until the loop stops
         scene.session.stop();
         const std::optional<double> steal1 = app::host_steal_s();
         const haptics::PeriodStats s = loop.stats();
@@ -58,6 +66,21 @@ void haptic_loop_timing(benchmark::State& state, const gpu::ContextOptions& gpu,
         // the CPU time the hypervisor gave to others meanwhile (all CPUs; -1: unreadable): the stalls
         // no priority inside a VM prevents, to read the period error beside (app/host_steal.hpp)
         state.counters["host_steal_s"] = steal0 && steal1 ? *steal1 - *steal0 : -1.0;
+        state.counters["late_max_ms"] = s.max_late_ms;
+        state.counters["page_faults"] = double(s.page_faults);
+        state.counters["memory_locked"] = memory_locked ? 1 : 0;
+        state.counters["cpu"] = loop.cpu();
+        if (floor.max_ms) {
+            state.counters["cyclictest_max_ms"] = *floor.max_ms;
+            // the goal: the loop's latest tick no later than the machine's floor (<= 0)
+            state.counters["late_over_cyclictest_ms"] = s.max_late_ms - *floor.max_ms;
+        } else {
+            // no figure rather than a made-up one; the reason as one label field (no spaces)
+            std::string note = floor.note;
+            std::replace(note.begin(), note.end(), ' ', '_');
+            label += (label.empty() ? "" : " ") + std::string("cyclictest_note=") + note;
+        }
+        if (!label.empty()) state.SetLabel(label);
     }
 }
 

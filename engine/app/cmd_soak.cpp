@@ -43,6 +43,12 @@ int run_soak(const SoakArgs& args)
                 r.rss.start_mib, r.rss.end_mib, r.rss.growth_mib, r.rss.trend_mib, r.rss.slope_mib_per_min, r.rss.max_mib);
     std::printf("echosim soak: haptic period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines; %u validation messages\n",
                 r.haptic_p50_ms, r.haptic_p99_ms, r.haptic_max_ms, r.haptic_missed, r.validation_messages);
+    std::printf("echosim soak: haptic loop's latest tick %.3f ms after its deadline, %lld page faults after its start (memory %s)\n",
+                r.haptic_late_max_ms, r.page_faults, r.haptic_memory_locked ? "locked" : "not locked");
+    if (r.cyclictest_max_ms)
+        std::printf("echosim soak: cyclictest beside it (the machine's floor): latest wake-up %.3f ms\n", *r.cyclictest_max_ms);
+    else
+        std::printf("echosim soak: cyclictest beside it: no figure (%s)\n", r.cyclictest_note.c_str());
     if (r.host_steal_s < 0)
         std::printf("echosim soak: host steal cannot be read (/proc/stat): every second counts as free of it\n");
     else

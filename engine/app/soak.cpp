@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cyclictest.hpp"
 #include "app/default_scene.hpp"
 #include "app/haptics_demo.hpp"
 #include "app/host_steal.hpp"
@@ -167,6 +168,7 @@ SoakResult run_soak_session(const SoakOptions& o)
         // did not move from one sample to the next), for the bound that judges our loop, not the host.
         haptics::PeriodStats steal_free, at_last_sample;
         std::optional<double> steal_at_start;  // read with the first sample
+        Cyclictest cyclictest(o.seconds);  // beside the loop for the run, ended with it
         const auto start = std::chrono::steady_clock::now();
         auto last = start;
         const double progress_every = std::max(5.0, 0.1 * o.seconds);
@@ -208,6 +210,11 @@ SoakResult run_soak_session(const SoakOptions& o)
             presenter.render(frame.passes(), &image);
             ++r.frames;
         }
+        const CyclictestResult floor = cyclictest.finish();
+        r.cyclictest_max_ms = floor.max_ms;
+        r.cyclictest_note = floor.note;
+        r.haptic_memory_locked = loop.memory_locked();
+        r.haptic_cpu = loop.cpu();
         scene.session.stop();
         const physics::RunnerStats ps = scene.session.physics_stats();
         r.physics_steps = ps.steps;
@@ -218,6 +225,8 @@ SoakResult run_soak_session(const SoakOptions& o)
         r.haptic_p99_ms = h.error_quantile_ms(0.99);
         r.haptic_max_ms = h.max_error_ms;
         r.haptic_missed = h.missed_deadlines;
+        r.haptic_late_max_ms = h.max_late_ms;
+        r.page_faults = h.page_faults;
         r.host_steal_s = r.samples.back().host_steal_s;
         r.haptic_steal_free_periods = steal_free.periods;
         r.haptic_steal_free_p99_ms = steal_free.error_quantile_ms(0.99);
@@ -258,6 +267,13 @@ std::string soak_json(const SoakResult& r)
         {"haptic_period_p99_ms", r.haptic_p99_ms},
         {"haptic_period_max_ms", r.haptic_max_ms},
         {"haptic_missed_deadlines", r.haptic_missed},
+        {"haptic_late_max_ms", r.haptic_late_max_ms},
+        {"page_faults", r.page_faults},  // the haptic loop's thread's, after its start
+        {"haptic_memory_locked", r.haptic_memory_locked},
+        {"haptic_cpu", r.haptic_cpu},
+        // cyclictest beside the loop over the run: its latest wake-up, or null and why
+        {"cyclictest_max_ms", r.cyclictest_max_ms ? nlohmann::json(*r.cyclictest_max_ms) : nlohmann::json(nullptr)},
+        {"cyclictest_note", r.cyclictest_note},
         {"host_steal_s", r.host_steal_s},
         {"steal_free_s", r.steal_free_s},
         {"haptic_steal_free_periods", r.haptic_steal_free_periods},

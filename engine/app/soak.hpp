@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -100,6 +101,16 @@ struct SoakResult {
     bool haptic_cpus_awake = false;  // the loop held its wake-latency request (haptics/cpu_wake_latency.hpp)
     double haptic_p50_ms = 0, haptic_p99_ms = 0, haptic_max_ms = 0;
     long long haptic_missed = 0;
+    // the loop's latest tick (its start after its deadline) [ms], its thread's page faults after its
+    // start, whether it held the process's memory locked, and the CPU it was pinned to (-1: none)
+    double haptic_late_max_ms = 0;
+    long long page_faults = 0;
+    bool haptic_memory_locked = false;
+    int haptic_cpu = -1;
+    // the machine's floor in the same spell (app/cyclictest.hpp): cyclictest's latest wake-up [ms],
+    // none with the reason where it could not run
+    std::optional<double> cyclictest_max_ms;
+    std::string cyclictest_note;
     // the host's steal over the run, all CPUs [s] (-1: cannot be read); the sampled seconds in which
     // it took nothing (all of them where it cannot be read), and the haptic periods of those seconds
     double host_steal_s = -1;
