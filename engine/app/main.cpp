@@ -1,4 +1,5 @@
 // echosim: one binary, one subcommand per job (DESIGN.md §4).
+#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -134,7 +135,15 @@ int main(int argc, char** argv)
                                 "plus: PLUS's output grid, axis-aligned in the reference frame; sweep: a box aligned with the sweep "
                                 "(default: plus with --config, else sweep)")
         ->check(CLI::IsMember({"plus", "sweep"}));
-    reconstruct_cmd->add_option("--budget-mb", reconstruct.budget_mb, "refuse volumes that need more memory [MiB]");
+    reconstruct_cmd->add_option("--budget-mb", reconstruct.budget_mb, "refuse volumes that need more memory [MiB]")
+        ->check(CLI::Validator(  // a whole number that fits 64 bits: "-1" and 2^64 would wrap or saturate unsaid
+            [](std::string& s) {
+                std::uint64_t v = 0;
+                const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+                if (s.empty() || end != s.data() + s.size() || s.front() == '-') return "'" + s + "' is not a whole number of MiB";
+                return ec == std::errc() ? std::string() : "'" + s + "' MiB overflow 64 bits";
+            },
+            "MiB"));
     reconstruct_cmd->add_flag("--gzip", reconstruct.gzip, "compress the volume's voxels");
 
     BenchArgs bench;

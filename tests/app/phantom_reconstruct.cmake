@@ -42,3 +42,11 @@ execute_process(COMMAND ${ECHOSIM} reconstruct --sweep ${WORK}/s.mha --out ${WOR
 if(NOT rc EQUAL 2 OR NOT err MATCHES "over the memory budget of 16 MiB")
   message(FATAL_ERROR "a volume over the budget was not refused (${rc}):\n${err}")
 endif()
+# --budget-mb values that would wrap (issue 34): -1 read as 2^64 - 1, 2^44 MiB shifted to 0 bytes
+foreach(budget -1 18446744073709551616 17592186044416)
+  execute_process(COMMAND ${ECHOSIM} reconstruct --sweep ${WORK}/s.mha --out ${WORK}/never.nrrd --budget-mb ${budget}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "--budget-mb" OR EXISTS ${WORK}/never.nrrd)
+    message(FATAL_ERROR "--budget-mb ${budget} was not refused by name (${rc}):\n${err}")
+  endif()
+endforeach()

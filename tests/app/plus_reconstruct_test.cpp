@@ -374,6 +374,36 @@ TEST(PlusReconstructionChecks, AnOutputGridNoFrameReachesIsRefusedAndGridOverrid
     }
 }
 
+// Each command-line option over its configuration field (README: "Command-line options override
+// the file"): the configuration asks for nearest neighbour, maximum, no hole filling, 1 mm voxels
+// and PLUS's frame names; the command line for trilinear, mean, holes filled, 0.5 mm, and the
+// tracker's frame. The run's summary line says what was used.
+TEST(PlusReconstructionChecks, EachOptionOverridesItsConfigurationField)
+{
+    const SmallCase c = small_case("override", kHalfMillimetre,
+                                   "<VolumeReconstruction OutputSpacing=\"1 1 1\" Interpolation=\"NEAREST_NEIGHBOR\" "
+                                   "CompoundingMode=\"MAXIMUM\" FillHoles=\"OFF\" ImageCoordinateFrame=\"Image\" "
+                                   "ReferenceCoordinateFrame=\"Reference\"/>");
+    ReconstructArgs args = c.args("override.nrrd");
+    testing::internal::CaptureStdout();
+    EXPECT_EQ(run_reconstruct(args), kExitOk);
+    std::string said = testing::internal::GetCapturedStdout();
+    EXPECT_NE(said.find("nearest neighbour interpolation, maximum compounding, holes left empty; PLUS's grid"), std::string::npos) << said;
+    EXPECT_NE(said.find("of 1 x 1 x 1 mm in Reference"), std::string::npos) << said;
+
+    args.splat = "trilinear";
+    args.compound = "mean";
+    args.fill_holes = "on";
+    args.voxel_mm = 0.5;
+    args.image_to_reference = "Tracker";
+    testing::internal::CaptureStdout();
+    EXPECT_EQ(run_reconstruct(args), kExitOk);
+    said = testing::internal::GetCapturedStdout();
+    EXPECT_NE(said.find("trilinear interpolation, mean compounding, holes filled; PLUS's grid"), std::string::npos) << said;
+    EXPECT_NE(said.find("of 0.5 x 0.5 x 0.5 mm in Tracker"), std::string::npos) << said;
+    std::filesystem::remove(args.out);
+}
+
 // The recording holds ImageToProbe too (file-wide): the recording's is used, and the
 // configuration's is named in a warning, not replaced unsaid.
 TEST(PlusReconstructionChecks, AConfigurationTransformTheRecordingAlsoHoldsIsNamed)
