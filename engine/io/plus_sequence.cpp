@@ -520,6 +520,9 @@ TransformRepository frame_repository(const PlusRecording& recording, std::size_t
     return repo;
 }
 
+// Frames naming the same transforms share one chain; this many different sets at most.
+constexpr std::size_t max_transform_name_sets = 64;
+
 // Which transforms a frame names, as written: frames naming the same ones share one chain.
 std::vector<std::pair<std::string, std::string>> transform_names(const RecordedFrame& frame)
 {
@@ -549,6 +552,13 @@ Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, 
         try {
             auto [at, added] = by_names.try_emplace(transform_names(frame));
             Shared& shared = at->second;
+            // each new set costs a copy and a search of every transform: bounded, so frames that
+            // each name transforms of their own cannot make the work frames x transforms
+            if (added && by_names.size() > max_transform_name_sets)
+                fail_field(path, frame.label,
+                           "the frames name more than " + std::to_string(max_transform_name_sets) +
+                               " different sets of transforms (a tracker writes the same ones in every frame, its "
+                               "status saying when one is missing)");
             if (added) {
                 shared.repo = frame_repository(recording, f, config);
                 shared.chain = shared.repo.chain(image_frame, reference_frame);

@@ -18,7 +18,7 @@
 // field kept twice, as the MetaImage/NRRD header and by frame). The pixels within the memory budget
 // (8 GiB by default), checked against the header and the file before allocating; compressed ones
 // grow with the stream (io/zlib_stream.hpp). Time: linear in the file, plus one search of the
-// transforms for each different set of transform names the frames hold (resolve_sweep).
+// transforms for each of at most 64 different sets of transform names the frames hold (resolve_sweep).
 #pragma once
 
 #include <cstddef>
@@ -94,8 +94,9 @@ PlusRecording read_plus_recording(const std::filesystem::path& path,
 // recording's own take precedence over); the recording's pixels move into the sweep. Throws
 // PlusSequenceError naming the file, the frame and the missing transform when a frame has no chain
 // from `image_frame` to `reference_frame`, or the singular one when a valid link of it is singular
-// (TransformRepository::product). Time: each frame's own transforms and its chain's length, plus one
-// search of all the transforms for each different set of transform names the frames hold.
+// (TransformRepository::product), or when the frames name more than 64 different sets of transforms.
+// Time: each frame's own transforms and its chain's length, plus a copy and a search of all the
+// transforms for each different set of transform names the frames hold (64 at most).
 Sweep resolve_sweep(const std::filesystem::path& path, PlusRecording recording, const TransformRepository& config,
                     const std::string& image_frame = "Image", const std::string& reference_frame = "Reference");
 

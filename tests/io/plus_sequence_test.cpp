@@ -565,5 +565,28 @@ TEST(PlusSequence, RefusesASingularTransformOnTheChainNamingTheFrame)
     expect_mha_error("singular.mha", text, {"Seq_Frame0001", "ImageToReference is singular", "onto a line"});
 }
 
+// Issue 34: frames that each name a transform of their own made each frame copy and search every
+// transform (frames x transforms). A recording's frames may name at most 64 different sets of
+// transforms (a tracker's name the same ones in every frame); 64 are read, 65 refused.
+TEST(PlusSequence, RefusesFramesNamingMoreThan64SetsOfTransforms)
+{
+    for (const std::size_t sets : {64u, 65u}) {
+        const Sweep s = make_sweep(1, 1, sets);
+        const auto path = temp("sets.mha");
+        write_plus_mha(path, s, false);
+        std::string text = read_bytes(path);
+        std::string fields;
+        for (std::size_t f = 0; f < sets; ++f) {
+            char label[32];
+            std::snprintf(label, sizeof label, "Seq_Frame%04zu_", f);
+            fields += label + std::string("Tool") + std::to_string(f) + "ToStylusTransform = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n";
+        }
+        write_bytes(path, with(text, "\nElementType", "\n" + fields + "ElementType"));
+        if (sets == 64) EXPECT_EQ(read_plus_sequence(path).frames.size(), 64u);
+        else expect_plus_error(path, {"Seq_Frame0064", "more than 64 different sets of transforms"});
+        std::filesystem::remove(path);
+    }
+}
+
 }  // namespace
 }  // namespace echosim::io
