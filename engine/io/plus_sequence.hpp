@@ -14,12 +14,13 @@
 // not on the chain (a stylus, a needle) are not looked at. Errors name the file, the frame (as
 // written, e.g. Seq_Frame0002) and the field.
 // Budget (issue 34): the header at most 1 MiB plus 4 KiB for each frame its sizes allow, checked in
-// one pass that keeps nothing before it is parsed; parsed, it holds about 10 times its size (each
-// field kept twice, as the MetaImage/NRRD header and by frame). The pixels within the memory budget
-// (8 GiB by default), checked against the header and the file before allocating, and held twice for
-// a moment when the file counts its frames on another axis than the last (they are reordered);
-// compressed ones grow with the stream (io/zlib_stream.hpp). Time: linear in the file, plus one search of the
-// transforms for each of at most 64 different sets of transform names the frames hold (resolve_sweep).
+// one pass that keeps nothing before it is parsed; parsed, it holds 8 to 15 times its size (each
+// field kept twice, as the MetaImage/NRRD header and by frame; 15 for the shortest fields). The
+// pixels within the memory budget (8 GiB by default), checked against the header and the file
+// before allocating, and held twice for a moment when the file counts its frames on another axis
+// than the last (they are reordered); compressed ones grow with the stream (io/zlib_stream.hpp).
+// Time: linear in the file, plus a copy and a search of the transforms for each of at most 64
+// different sets of transform names the frames hold (resolve_sweep).
 #pragma once
 
 #include <cstddef>
