@@ -264,7 +264,8 @@ int run_reconstruct(const ReconstructArgs& args)
         return kExitBadInput;
     }
     if (options.clip.x1 != UINT32_MAX && (options.clip.x1 >= sweep.width || options.clip.y1 >= sweep.height))
-        std::fprintf(stderr, "echosim reconstruct: warning: %s: the clip rectangle reaches past the frames of %u x %u pixels: cut to them\n",
+        std::fprintf(stderr,
+                     "echosim reconstruct: warning: %s: the clip rectangle reaches past the frames of %u x %u pixels: cut to them\n",
                      plan.clip_at.c_str(), sweep.width, sweep.height);
     options.clip = *kept;
     const double thickness = echo::sweep_thickness(valid_transforms, *kept);

@@ -351,6 +351,17 @@ TEST(PlusReconstructionChecks, AClipRectangleOutsideTheFramesIsRefused)
                                    "ClipRectangleSize=\"10 10\"/>");
     const ReconstructArgs args = c.args("clip.nrrd");
     expect_refused(run_captured(args), args, {"ClipRectangleOrigin 4000 3000", "outside the frames of 8 x 6", "clip.xml:"});
+
+    // one that starts inside and reaches past them is cut to them, and said
+    const SmallCase past = small_case("clip_past", kHalfMillimetre,
+                                      "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\" ClipRectangleOrigin=\"2 2\" "
+                                      "ClipRectangleSize=\"100 100\"/>");
+    const ReconstructArgs cut = past.args("clip_past.nrrd");
+    const Outcome r = run_captured(cut);
+    EXPECT_EQ(r.rc, kExitOk) << r.err;
+    EXPECT_NE(r.err.find("the clip rectangle reaches past the frames of 8 x 6 pixels"), std::string::npos) << r.err;
+    EXPECT_EQ(io::read_volume(cut.out).size, (std::array<std::size_t, 3>{6, 4, 19}));  // pixels 2..7, 2..5: 2.5 x 1.5 mm
+    std::filesystem::remove(cut.out);
 }
 
 // OutputOrigin/OutputExtent 1 m away from every frame: refused; and with --grid sweep the frames'
@@ -410,7 +421,8 @@ TEST(PlusReconstructionChecks, AConfigurationTransformTheRecordingAlsoHoldsIsNam
 {
     const SmallCase c = small_case("twice", kHalfMillimetre, "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\"/>");
     std::string recording = test::read_bytes(c.sweep);
-    recording = test::with(recording, "ElementType = MET_UCHAR", "ImageToProbeTransform = 0.5 0 0 0 0 0.5 0 0 0 0 0.5 0 0 0 0 1\nElementType = MET_UCHAR");
+    recording = test::with(recording, "ElementType = MET_UCHAR",
+                           "ImageToProbeTransform = 0.5 0 0 0 0 0.5 0 0 0 0 0.5 0 0 0 0 1\nElementType = MET_UCHAR");
     test::write_bytes(c.sweep, recording);
     const ReconstructArgs args = c.args("twice.nrrd");
     const Outcome r = run_captured(args);

@@ -534,7 +534,8 @@ TEST(PlusSequence, RefusesASingularTransformItWouldInvertNamingTheFrame)
 TEST(PlusSequence, RefusesAHeaderPastWhatItsFramesNeed)
 {
     std::string junk;
-    for (int i = 0; junk.size() < (std::size_t(11) << 20) / 10; ++i) junk += "Note" + std::to_string(i) + " = " + std::string(100, 'x') + "\n";
+    for (int i = 0; junk.size() < (std::size_t(11) << 20) / 10; ++i)
+        junk += "Note" + std::to_string(i) + " = " + std::string(100, 'x') + "\n";
     expect_mha_error("long_header.mha", with(good_mha(), "\nElementType", "\n" + junk + "ElementType"),
                      {"header runs past", "more than a sequence of 4 frames needs", "1 MiB, and 4 KiB a frame"});
 
