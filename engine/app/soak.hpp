@@ -101,8 +101,9 @@ struct SoakResult {
     bool haptic_cpus_awake = false;  // the loop held its wake-latency request (haptics/cpu_wake_latency.hpp)
     double haptic_p50_ms = 0, haptic_p99_ms = 0, haptic_max_ms = 0;
     long long haptic_missed = 0;
-    // the loop's latest tick (its start after its deadline) [ms], its thread's page faults after its
-    // start, whether it held the process's memory locked, and the CPU it was pinned to (-1: none)
+    // the loop's latest tick (its start after its deadline) over the run, cyclictest's spell [ms], its
+    // thread's page faults after its start, whether it held the process's memory locked, and the CPU
+    // it was pinned to (-1: none)
     double haptic_late_max_ms = 0;
     long long page_faults = 0;
     bool haptic_memory_locked = false;

@@ -185,6 +185,7 @@ void HapticLoop::run()
     const std::int64_t origin = now_ns();
     std::int64_t due = origin + period, last_wake = origin;
     std::int64_t n = 0;
+    std::uint32_t window = window_.load(std::memory_order_relaxed);
     while (running_.load(std::memory_order_relaxed)) {
         if (due - spin > now_ns()) sleep_until_ns(due - spin);
         std::int64_t wake = now_ns();
@@ -193,7 +194,13 @@ void HapticLoop::run()
             wake = now_ns();
         }
         stats_.add_period(double(wake - last_wake) * 1e-6, nominal_ms);
-        stats_.max_late_ms = std::max(stats_.max_late_ms, double(wake - due) * 1e-6);
+        const double late_ms = double(wake - due) * 1e-6;
+        stats_.max_late_ms = std::max(stats_.max_late_ms, late_ms);
+        if (const std::uint32_t w = window_.load(std::memory_order_relaxed); w != window) {
+            window = w;
+            stats_.window_max_late_ms = 0;
+        }
+        stats_.window_max_late_ms = std::max(stats_.window_max_late_ms, late_ms);
         last_wake = wake;
         if (wake > due + period) {
             // woke after the next tick was due: count it, and do not run a burst of ticks to catch up

@@ -89,6 +89,9 @@ public:
     // the timing so far (a copy; the loop's thread keeps adding)
     PeriodStats stats();  // the driver thread (one reader)
     std::int64_t ticks() const { return ticks_.load(std::memory_order_relaxed); }
+    // From the next tick on, PeriodStats::window_max_late_ms covers only what follows: the loop's
+    // latest tick over the same spell as a measurement beside it (cyclictest), not its set-up's.
+    void restart_window() { window_.fetch_add(1, std::memory_order_relaxed); }
     const device::Device& device() const { return *device_; }
     double period_s() const { return 1.0 / options_.rate_hz; }
 
@@ -113,6 +116,7 @@ private:
     TripleBuffer<HapticSample> out_;
     TripleBuffer<PeriodStats> stats_out_;  // published every 100 ticks, for stats() while running
     std::atomic<std::int64_t> ticks_{0};
+    std::atomic<std::uint32_t> window_{0};  // restart_window()'s count
     std::thread thread_;
     std::atomic<bool> running_{false};
     std::atomic<int> started_{0};  // 0 starting, 1 running (the thread settled its priority)

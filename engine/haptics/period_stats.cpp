@@ -35,6 +35,7 @@ void PeriodStats::merge(const PeriodStats& other)
     max_error_ms = std::max(max_error_ms, other.max_error_ms);
     max_tick_us = std::max(max_tick_us, other.max_tick_us);
     max_late_ms = std::max(max_late_ms, other.max_late_ms);
+    window_max_late_ms = std::max(window_max_late_ms, other.window_max_late_ms);
     page_faults += other.page_faults;
 }
 

@@ -19,6 +19,7 @@ struct PeriodStats {
     double max_error_ms = 0;
     double max_tick_us = 0;  // the longest tick's work (device, force, hand-offs)
     double max_late_ms = 0;  // the latest a tick began after its deadline
+    double window_max_late_ms = 0;  // the same since the loop's window was last restarted (HapticLoop::restart_window)
     // minor + major faults of the loop's thread since its start, after it pre-faulted its stack and
     // buffers (getrusage RUSAGE_THREAD; brought up to date every 100 ticks and at the end)
     std::int64_t page_faults = 0;
