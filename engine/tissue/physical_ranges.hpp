@@ -21,13 +21,21 @@ struct PhysicalRange {
     const char* what;
 };
 
+// The two below are also bounded by the press the simulator allows (session::Session::kMaxPressMm,
+// 25 mm): every model inside them pushes back harder the deeper it is pressed, all the way down
+// (bench/RESULTS.md "Ranges and the deepest press"). Past them the probe's penalty contact cannot
+// hold the tissue: at 10 N/mm with springs bottoming at 27 mm the force peaked at 398 N at 20 mm and
+// fell to 380 N at 25 mm; bottoming at 5 mm it fell from 105 N at 15 mm to 41 N, at 1 mm to 0 N.
 // 1/b: how hard the tissue pushes back per mm at the first touch (the shipped thigh: 0.15..0.20;
-// 10 N/mm is stiffer than a tensed muscle pressed by a 5 mm tip).
-inline constexpr PhysicalRange kRestStiffness{1e-3, 10.0, "N/mm", "rest stiffness 1/b of a sample point's spring"};
+// 2 N/mm is ten times that, a tensed muscle; a patch that stiff pushes back 170 N at 25 mm).
+inline constexpr PhysicalRange kRestStiffness{1e-3, 2.0, "N/mm", "rest stiffness 1/b of a sample point's spring"};
 // b/a: the compression where the spring bottoms out, the soft tissue between skin and bone used up
-// (the shipped thigh: 41..63 mm); a = 0, a spring that never bottoms out, is allowed.
-inline constexpr PhysicalRange kBottomingDepth{1.0, std::numeric_limits<double>::infinity(), "mm",
-                                               "bottoming depth b/a of a sample point's spring"};
+// (the shipped thigh: 41..63 mm); a = 0, a spring that never bottoms out, is allowed. At least the
+// deepest press over the springs' clamp (physics/forces.hpp, 0.95: 26.3 mm) with room for the skin
+// beside the probe: a thigh thinner than 30 mm over its femur is outside what we model. At most a
+// kilometre, what a = 0 stands for (tissue_model.cpp): a denormal a (1e-310) made b/a infinite,
+// and the interpolation between sample points NaN (0 x infinity), which the physics met.
+inline constexpr PhysicalRange kBottomingDepth{30.0, 1e6, "mm", "bottoming depth b/a of a sample point's spring"};
 // lambda: the skin's membrane stiffness (the shipped thigh: 5.8e-4). Below 1e-6 N/mm the membrane
 // carries nothing a probe could measure: a fit that lands there did not find it.
 inline constexpr PhysicalRange kSurfaceStiffness{1e-6, 10.0, "N/mm", "surface spring stiffness lambda"};

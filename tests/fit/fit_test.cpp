@@ -54,7 +54,7 @@ TEST(Fit, RecoversKnownParametersFromTheModelsOwnData)
     tissue::SampleParameters truth;
     for (int p = 0; p < SampleGrid::count; ++p) {
         const int r = SampleGrid::row_of(p), c = SampleGrid::col_of(p);
-        truth.b[std::size_t(p)] = 0.35 + 0.05 * r + 0.03 * c;                        // 2.9 .. 1.3 N/mm at rest
+        truth.b[std::size_t(p)] = 0.55 + 0.05 * r + 0.03 * c;                        // 1.8 .. 1.1 N/mm at rest
         truth.a[std::size_t(p)] = truth.b[std::size_t(p)] / (40.0 + 2.0 * c - r);    // bottoms out at 33 .. 54 mm
     }
     truth.lambda = 0.12;

@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+
+#include "tissue/physical_ranges.hpp"
 
 namespace echosim::session {
 namespace {
@@ -109,6 +112,34 @@ TEST(Session, RefusesWhatIsNotAProbeOrATime)
     Session real_time({.clock = Clock::real_time});
     EXPECT_THROW(real_time.press_and_settle(real_time.probe().rest, 3.0), std::logic_error);
     real_time.stop();
+}
+
+// Issue 34: every model inside the physical ranges pushes back harder the deeper it is pressed, to
+// the deepest press allowed. The corners of the ranges that make the contact's job hardest (the
+// stiffest rest stiffness, the shallowest bottoming depth), and the shipped thigh, settled at
+// 20, 22.5 and 25 mm. (The ranges before held models whose force fell: 105 N at 15 mm, 41 N at 25.)
+TEST(Session, EveryModelInTheRangesPushesBackHarderTheDeeperItIsPressed)
+{
+    tissue::SampleParameters corner;
+    for (std::size_t i = 0; i < corner.b.size(); ++i) {
+        corner.b[i] = 1.0 / tissue::kRestStiffness.hi;
+        corner.a[i] = corner.b[i] / tissue::kBottomingDepth.lo;
+    }
+    corner.lambda = 5.8e-4;  // the shipped thigh's membrane and damping
+    corner.mu = 9.1e-4;
+    ASSERT_FALSE(tissue::sample_parameters_defect(corner)) << tissue::sample_parameters_defect(corner).why;
+    for (const std::optional<tissue::SampleParameters>& model : {std::optional<tissue::SampleParameters>(corner), std::optional<tissue::SampleParameters>()}) {
+        SessionOptions options;
+        options.tissue = model;
+        Session s(options);
+        double before = 0;
+        for (double press : {20.0, 22.5, Session::kMaxPressMm}) {
+            const SettleReport r = s.press_and_settle(s.probe().rest, press);
+            ASSERT_TRUE(r.settled) << not_settled_message(press, r);
+            EXPECT_GT(r.force_N, before) << (model ? "corner" : "thigh") << " at " << press << " mm";
+            before = r.force_N;
+        }
+    }
 }
 
 // A press is held until the force on the probe stops changing; the force it then reports is the

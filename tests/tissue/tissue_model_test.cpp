@@ -24,7 +24,7 @@ SampleParameters varied_parameters()
     SampleParameters p;
     for (int i = 0; i < SampleGrid::count; ++i) {
         p.b[std::size_t(i)] = 0.5 + 0.01 * i;           // rest stiffness 2 .. 0.9 N/mm
-        p.a[std::size_t(i)] = p.b[std::size_t(i)] / (20.0 + 0.2 * i);  // bottoms out at 20 .. 32.6 mm
+        p.a[std::size_t(i)] = p.b[std::size_t(i)] / (30.0 + 0.2 * i);  // bottoms out at 30 .. 42.6 mm
     }
     p.lambda = 0.08;
     p.mu = 0.002;
@@ -264,6 +264,22 @@ TEST(TissueJson, PhysicallyAbsurdParametersAreRefusedByName)
     why = message(m);
     EXPECT_NE(why.find("'samples.a_per_N[3]'"), std::string::npos) << why;
     EXPECT_NE(why.find("bottoming depth"), std::string::npos) << why;
+
+    // issue 34: inside the old ranges, but the force fell as the probe pressed deeper (the contact
+    // cannot hold a spring bottoming within the 25 mm press, nor one this stiff: physical_ranges.hpp)
+    m = good;
+    m.samples.a[3] = m.samples.b[3] / 5.0;
+    why = message(m);
+    EXPECT_NE(why.find("'samples.a_per_N[3]': 5 mm outside the physical range [30, 1e+06] mm"), std::string::npos) << why;
+    m = good;
+    m.samples.b[9] = 0.1;  // 10 N/mm at rest
+    why = message(m);
+    EXPECT_NE(why.find("'samples.b_mm_per_N[9]': 10 N/mm outside the physical range [0.001, 2] N/mm"), std::string::npos) << why;
+    // a denormal a made b/a infinite, and the nodes between sample points NaN
+    m = good;
+    m.samples.a[3] = 1e-310;
+    why = message(m);
+    EXPECT_NE(why.find("'samples.a_per_N[3]': inf mm outside the physical range"), std::string::npos) << why;
 
     // a node of a refined model is checked scaled back to a sample point's share (x r^2 = 4):
     // 0.3 g is a plausible sample point's mass, but at refine 2 the node carries a quarter of it
