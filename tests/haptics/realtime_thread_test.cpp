@@ -24,6 +24,14 @@ namespace {
 
 constexpr std::size_t kFreshPages = 64;
 
+// Under a sanitizer, the loop's own accesses touch shadow memory (and fake stack frames) that the
+// runtime maps on its own schedule: "no fault after the start" is a claim about the plain build.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
 // getrusage's own count for this thread, read directly: the figure thread_page_faults() must give
 std::int64_t rusage_faults()
 {
@@ -65,7 +73,9 @@ TEST(RealtimeThread, PrefaultingTheStackLeavesNothingToFaultInIt)
         prefault_stack();  // the same pages again: all mapped
         faults = thread_page_faults() - before;
     }).join();
-    EXPECT_EQ(faults, 0);
+    if (!kSanitized) {
+        EXPECT_EQ(faults, 0);
+    }
 }
 
 // A NullDevice whose driver, once, at its 200th read, touches fresh memory in the loop's thread and
@@ -105,7 +115,9 @@ TEST(RealtimeThread, TheLoopTakesNoPageFaultAfterItsStartAndCountsAnyItDoes)
     const auto quiet = std::make_shared<TouchingDevice>();
     const PeriodStats calm = run_loop_for_a_second(quiet, note);
     EXPECT_GE(calm.periods, 999);
-    EXPECT_EQ(calm.page_faults, 0) << "the loop faulted after its start (" << (note.empty() ? "real time" : note) << ")";
+    if (!kSanitized) {
+        EXPECT_EQ(calm.page_faults, 0) << "the loop faulted after its start (" << (note.empty() ? "real time" : note) << ")";
+    }
 
     const auto touching = std::make_shared<TouchingDevice>();
     touching->touch = true;
@@ -134,6 +146,7 @@ struct DeepStackDevice : device::NullDevice {
 // left unlocked (a lock maps a new thread's whole stack up front, which would hide the pre-faulting)
 TEST(RealtimeThread, TheLoopsStackIsFaultedInBeforeItsFirstTick)
 {
+    if (kSanitized) GTEST_SKIP() << "a sanitizer's shadow of the stack is mapped on its own schedule";
     physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
     const ProbeMapping mapping(test::leg());
     HapticOptions o;
