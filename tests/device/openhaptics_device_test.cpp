@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <thread>
 
@@ -120,7 +121,7 @@ TEST_F(OpenHapticsDeviceTest, MapsTheHandlesTransformAboutTheWorkspaceCentreAndR
     EXPECT_FALSE(arm.read(0.0, s)) << "connected before the servo's first frame";
 
     // the stylus turned 90 degrees about y, at (10, -20, 35) mm: column-major, as HD_CURRENT_TRANSFORM
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
     double m[16] = {};
     for (int col = 0; col < 3; ++col)
         for (int row = 0; row < 3; ++row) m[col * 4 + row] = r(row, col);
