@@ -210,9 +210,11 @@ HDCallbackCode OpenHapticsDevice::servo_frame(bool zero_only) noexcept
         hd.hdGetDoublev(HD_CURRENT_TRANSFORM, m);
         hd.hdGetIntegerv(HD_CURRENT_BUTTONS, &buttons);
     }
-    // the force the loop asked for, unless it is stale or we are stopping; cut to the arm's limit
+    // the force the loop asked for, unless it is stale, we are stopping, or the last frame failed
+    // (the loop's force was worked out from a pose the arm no longer vouches for); cut to the limit
     Eigen::Vector3d f = Eigen::Vector3d::Zero();
-    if (!zero_only && !stopping_.load(std::memory_order_acquire)) {
+    const bool was_faulted = !connected_.load(std::memory_order_relaxed);  // this thread is its one writer
+    if (!zero_only && !was_faulted && !stopping_.load(std::memory_order_acquire)) {
         const Command& c = command_.read();
         if (c.stamp_ns != 0 && double(steady_ns() - c.stamp_ns) * 1e-9 <= kForceHoldS && c.force_N.allFinite()) {
             f = c.force_N;
@@ -226,15 +228,16 @@ HDCallbackCode OpenHapticsDevice::servo_frame(bool zero_only) noexcept
 
     const HDErrorInfo e = pop_errors(hd);
     if (zero_only) return HD_CALLBACK_DONE;
-    // device and communication faults: the arm is gone until a frame goes through again; force
-    // errors (motors too warm, a velocity or impulse over the arm's limit): it cut the force itself
+    // device and communication faults: the arm is gone until a frame goes through again; any other
+    // error (a force error: motors too warm, a velocity or impulse over the arm's limit, which the
+    // arm answers by cutting its force itself; a frame or scheduler error) is counted and said
     const bool fault = e.errorCode >= HD_DEVICE_FAULT && e.errorCode < HD_ILLEGAL_BEGIN;
     if (fault) {
         fault_internal_.store(e.internalErrorCode, std::memory_order_relaxed);
         fault_code_.store(e.errorCode, std::memory_order_relaxed);
     } else if (e.errorCode != HD_SUCCESS) {
-        force_error_code_.store(e.errorCode, std::memory_order_relaxed);
-        force_errors_.fetch_add(1, std::memory_order_relaxed);
+        frame_error_code_.store(e.errorCode, std::memory_order_relaxed);
+        frame_errors_.fetch_add(1, std::memory_order_relaxed);
     }
     connected_.store(!fault, std::memory_order_release);
 
@@ -284,11 +287,13 @@ void OpenHapticsDevice::events(std::vector<DeviceEvent>& out)
                            "servo frame failed: " + describe(*api_, e) + "; no force is sent until it answers again; " + kWhatToCheck});
         }
     }
-    if (const std::uint64_t n = force_errors_.load(std::memory_order_relaxed); n != reported_force_errors_) {
+    if (const std::uint64_t n = frame_errors_.load(std::memory_order_relaxed); n != reported_frame_errors_) {
+        const HDerror code = frame_error_code_.load(std::memory_order_relaxed);
+        const bool force_error = code >= HD_WARM_MOTORS && code < HD_DEVICE_FAULT;
         out.push_back({DeviceEvent::Kind::note, caps_.name,
-                       "the arm cut its force " + std::to_string(n - reported_force_errors_) + " time(s), last with " +
-                           hd_error_name(force_error_code_.load(std::memory_order_relaxed))});
-        reported_force_errors_ = n;
+                       std::to_string(n - reported_frame_errors_) + " servo frame(s) reported an error, the last " + hd_error_name(code) +
+                           (force_error ? ": the arm cut its force itself" : "")});
+        reported_frame_errors_ = n;
     }
 }
 

@@ -7,7 +7,7 @@
 // asked for last, closes the frame and checks hdGetError. The haptic thread never calls the HD API:
 // read() takes the servo's latest sample and write_force() leaves the force for its next frame, each
 // through a triple buffer, so neither side waits for the other. The driver thread's events() turns
-// what the servo saw (a fault, a recovery, a force the arm cut) into events.
+// what the servo saw (a fault, a recovery, an error such as a force the arm cut) into events.
 //
 // Safety. The force sent is cut to the arm's continuous maximum (its nominal peak, where it reports
 // no continuous figure), keeping its direction; a NaN sends nothing. A force the loop has not
@@ -67,11 +67,11 @@ private:
     std::atomic<bool> connected_{true};
     std::atomic<std::uint32_t> fault_code_{0};
     std::atomic<int> fault_internal_{0};
-    std::atomic<std::uint64_t> force_errors_{0};
-    std::atomic<std::uint32_t> force_error_code_{0};
+    std::atomic<std::uint64_t> frame_errors_{0};  // errors other than faults
+    std::atomic<std::uint32_t> frame_error_code_{0};
     // driver thread's own
     bool announced_ = false, reported_connected_ = true;
-    std::uint64_t reported_force_errors_ = 0;
+    std::uint64_t reported_frame_errors_ = 0;
 };
 
 // What `echosim devices` says of an arm: whether OpenHaptics is installed, and if so whether an arm

@@ -179,6 +179,11 @@ TEST_F(OpenHapticsDeviceTest, AFaultIsSaidWithTheHdErrorTheArmGoesLimpAndComesBa
     fake_.set_fault(HD_COMM_ERROR, 12);  // unplugged
     fake_.servo(1);
     EXPECT_FALSE(arm.read(0.001, s));
+    // no force is sent to an arm that failed its last frame, whatever the loop asks
+    arm.write_force(Eigen::Vector3d(0, 0.5, 0));
+    fake_.servo(1);
+    std::string log = calls();
+    EXPECT_EQ(log.substr(log.rfind("force=")), "force=0,0,0") << log;
     arm.events(events);
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].kind, DeviceEvent::Kind::disconnected);
@@ -188,10 +193,14 @@ TEST_F(OpenHapticsDeviceTest, AFaultIsSaidWithTheHdErrorTheArmGoesLimpAndComesBa
     arm.events(events);
     EXPECT_TRUE(events.empty()) << "said once, not once a frame";
 
-    fake_.set_fault(HD_SUCCESS, 0);  // back
+    fake_.set_fault(HD_SUCCESS, 0);  // back: its first clean frame sends nothing yet, the next the loop's force
     arm.write_force(Eigen::Vector3d(0, 0.5, 0));
     fake_.servo(1);
     EXPECT_TRUE(arm.read(0.002, s));
+    EXPECT_EQ(sent(), Eigen::Vector3d::Zero());
+    arm.write_force(Eigen::Vector3d(0, 0.5, 0));
+    fake_.servo(1);
+    EXPECT_DOUBLE_EQ(sent().y(), 0.5);
     arm.events(events);
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].kind, DeviceEvent::Kind::connected);
@@ -204,7 +213,8 @@ TEST_F(OpenHapticsDeviceTest, AFaultIsSaidWithTheHdErrorTheArmGoesLimpAndComesBa
     arm.events(events);
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].kind, DeviceEvent::Kind::note);
-    EXPECT_NE(events[0].message.find("HD_EXCEEDED_MAX_VELOCITY"), std::string::npos) << events[0].message;
+    EXPECT_NE(events[0].message.find("HD_EXCEEDED_MAX_VELOCITY (0x0203): the arm cut its force itself"), std::string::npos)
+        << events[0].message;
 }
 
 TEST_F(OpenHapticsDeviceTest, StoppingSendsZeroForceFirstThenStopsTheServoAndDisablesTheArm)
