@@ -26,7 +26,7 @@ grep -q '"library_found": true' "$work/devices.json" || fail "the fake libHD is 
 # a small volume of our own, so no case volume is made (a minute and a half)
 "$echosim" phantom --frames 24 --pixel-mm 0.3 --out "$work/s.mha" >/dev/null 2>&1
 "$echosim" reconstruct --sweep "$work/s.mha" --out "$work/v.nrrd" --voxel-mm 0.5 >/dev/null 2>&1
-run() { xvfb-run -a -s "-screen 0 1280x800x24" "$echosim" run --frames 40 --width 640 --height 480 --gpu cpu \
+run() { xvfb-run -a -s "-screen 0 1280x800x24" "$echosim" run --frames 20 --width 640 --height 480 --gpu cpu \
   --volume "$work/v.nrrd" --labels "$work/v.labels.nrrd" "$@"; }
 
 set +e
