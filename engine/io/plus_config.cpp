@@ -203,6 +203,42 @@ PlusReconstructionSettings read_reconstruction(const Place& place, std::vector<s
     return s;
 }
 
+// [attributes] PLUS's elements have at most a few dozen; tinyxml2 checks each attribute against
+// those before it on the element, so 50,000 on one element took 10 s (issue 34).
+constexpr std::size_t max_attributes = 256;
+
+// The line of the first tag with more than max_attributes attributes (counted as '=' outside quoted
+// values), or 0: looked for in the text before tinyxml2 parses it. Comments, CDATA sections and
+// the document type are skipped; a tag's end found by '>' outside quotes.
+int tag_with_too_many_attributes(std::string_view xml)
+{
+    int line = 1;
+    for (std::size_t i = 0; i < xml.size(); ++i) {
+        if (xml[i] == '\n') ++line;
+        if (xml[i] != '<') continue;
+        const auto skip_to = [&](std::string_view end) {
+            const std::size_t at = xml.find(end, i);
+            const std::size_t stop = at == std::string_view::npos ? xml.size() : at + end.size();
+            line += int(std::count(xml.begin() + std::ptrdiff_t(i), xml.begin() + std::ptrdiff_t(stop), '\n'));
+            i = stop - 1;
+        };
+        if (xml.substr(i, 4) == "<!--") { skip_to("-->"); continue; }
+        if (xml.substr(i, 9) == "<![CDATA[") { skip_to("]]>"); continue; }
+        if (xml.substr(i, 2) == "<!") { skip_to(">"); continue; }
+        const int tag_line = line;
+        std::size_t attributes = 0;
+        char quote = 0;
+        for (++i; i < xml.size() && (quote || xml[i] != '>'); ++i) {
+            const char c = xml[i];
+            if (c == '\n') ++line;
+            if (quote) quote = c == quote ? 0 : quote;
+            else if (c == '"' || c == '\'') quote = c;
+            else if (c == '=' && ++attributes > max_attributes) return tag_line;
+        }
+    }
+    return 0;
+}
+
 // Every element of that name in the document, depth first.
 void find_all(const tinyxml2::XMLElement* e, std::string_view name, std::vector<const tinyxml2::XMLElement*>& out)
 {
@@ -228,6 +264,9 @@ PlusConfig read_plus_config(const std::filesystem::path& path)
     if (!in) throw PlusConfigError(path.string() + ": cannot open: " + std::generic_category().message(errno));
     const std::string xml{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 
+    if (const int line = tag_with_too_many_attributes(xml))
+        throw PlusConfigError(path.string() + ":" + std::to_string(line) + ": an element with more than " +
+                              std::to_string(max_attributes) + " attributes: not a PLUS device-set configuration");
     tinyxml2::XMLDocument doc;
     if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS)
         throw PlusConfigError(path.string() + ":" + std::to_string(doc.ErrorLineNum()) + ": not well-formed XML: " + doc.ErrorStr());

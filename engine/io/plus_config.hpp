@@ -6,8 +6,10 @@
 // asks for that echosim does not do is listed in `warnings`, each naming the line and attribute,
 // never silently dropped. Errors (PlusConfigError) name the file, the line and the attribute.
 // Budget: a configuration of at most 1 MiB (PLUS's own are 5 to 60 KiB), refused by its size before
-// it is read; parsing then holds at most about 40 MiB (tinyxml2's nodes for the densest file) and
-// takes time O(n log n) in its n elements (well under a second at the cap).
+// it is read, and at most 256 attributes on an element (tinyxml2 checks each against those before
+// it), refused by a scan of the text before parsing; parsing then holds at most about 40 MiB
+// (tinyxml2's nodes for the densest file) and takes time O(n log n) in its n elements and
+// attributes (0.15 s at the cap).
 #pragma once
 
 #include <array>
@@ -63,7 +65,8 @@ struct PlusConfig {
 };
 
 // Throws PlusConfigError naming the file (and line and attribute) when it is not a regular file,
-// is over 1 MiB, is not well-formed XML, or a value is malformed.
+// is over 1 MiB, has an element of more than 256 attributes, is not well-formed XML, or a value is
+// malformed.
 PlusConfig read_plus_config(const std::filesystem::path& path);
 
 }  // namespace echosim::io

@@ -1,5 +1,6 @@
 #include "io/plus_config.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -174,6 +175,34 @@ TEST(PlusConfig, RefusesAConfigurationPastOneMebibyteAndReadsManyTransforms)
                             R"(<Transform From="B9999" To="A9999" Matrix="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/></CoordinateDefinitions>)"))
                   .find("B9999ToA9999 is defined already"),
               std::string::npos);
+}
+
+// Issue 34: tinyxml2 checks each attribute against those before it on its element, so 50,000
+// attributes on one (half a megabyte) took 10 s. An element of more than 256 attributes is refused
+// by a scan of the text before parsing, naming its line; '=' in comments, CDATA and quoted values
+// does not count.
+TEST(PlusConfig, RefusesAnElementOfMoreThan256Attributes)
+{
+    const auto attributes = [](int n) {
+        std::string a;
+        for (int i = 0; i < n; ++i) a += " A" + std::to_string(i) + "=\"x\"";
+        return a;
+    };
+    const std::string many = with(kConfig, "<VolumeReconstruction", "<VolumeReconstruction\n" + attributes(257));
+    const std::string m = error_of(many);
+    EXPECT_NE(m.find("an element with more than 256 attributes"), std::string::npos) << m;
+    const auto line = kConfig.substr(0, kConfig.find("<VolumeReconstruction"));
+    EXPECT_NE(m.find(":" + std::to_string(std::count(line.begin(), line.end(), '\n') + 1) + ": "), std::string::npos) << m;
+
+    // 200 more are parsed (each an unknown attribute, warned about); '=' elsewhere is not an attribute
+    const std::string equals(1000, '=');
+    const std::string fine = with(kConfig, "<VolumeReconstruction",
+                                  "<!--" + equals + "-->\n<![CDATA[" + equals + "]]>\n<VolumeReconstruction Note=\"" + equals +
+                                      ">\"" + attributes(200));
+    const auto path = temp("attributes.xml");
+    write_bytes(path, fine);
+    EXPECT_EQ(read_plus_config(path).warnings.size(), 201u);  // the 200 and Note, each named
+    std::filesystem::remove(path);
 }
 
 }  // namespace
