@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -152,12 +153,15 @@ std::optional<std::uint64_t> budget_bytes(std::optional<std::uint64_t> option)
 void warn_also_recorded(Plan& plan, const ReconstructArgs& args, const io::PlusRecording& recording)
 {
     io::TransformRepository config;
-    for (const io::PlusConfigTransform& t : plan.config_transforms) config.set(t.from, t.to, t.matrix, t.valid);
+    std::map<std::pair<std::string, std::string>, const io::PlusConfigTransform*> by_frames;  // either way round
+    for (const io::PlusConfigTransform& t : plan.config_transforms) {
+        config.set(t.from, t.to, t.matrix, t.valid);
+        by_frames[std::minmax(t.from, t.to)] = &t;
+    }
     for (const io::AlsoRecorded& a : io::transforms_also_recorded(recording, config)) {
-        int line = 0;
-        std::string given;
-        for (const io::PlusConfigTransform& t : plan.config_transforms)
-            if ((t.from == a.from && t.to == a.to) || (t.from == a.to && t.to == a.from)) line = t.line, given = t.from + "To" + t.to;
+        const io::PlusConfigTransform& t = *by_frames.at(std::minmax(a.from, a.to));
+        const int line = t.line;
+        const std::string given = t.from + "To" + t.to;
         const std::string where = a.frames == 0 ? "file-wide" : "in " + std::to_string(a.frames) + " of its frames";
         plan.warnings.push_back(args.config.string() + ":" + std::to_string(line) + ": Transform: " + given + " is also in " +
                                 args.sweep.string() + " (" + a.from + "To" + a.to + "Transform, " + where +
