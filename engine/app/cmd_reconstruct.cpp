@@ -274,14 +274,18 @@ int run_reconstruct(const ReconstructArgs& args)
     options.clip = *kept;
     const double thickness = echo::sweep_thickness(valid_transforms, *kept);
     if (thickness <= 1e-6 * echo::frame_diagonal(valid_transforms, *kept)) {
+        if (valid_transforms.size() == 1) {
+            std::fprintf(stderr, "echosim reconstruct: %s: one frame has a valid image and transform: one plane spans no volume\n",
+                         args.sweep.c_str());
+            return kExitBadInput;
+        }
         const bool same = std::all_of(valid_transforms.begin(), valid_transforms.end(),
                                       [&](const glm::dmat4& m) { return m == valid_transforms.front(); });
         std::fprintf(stderr,
                      "echosim reconstruct: %s: the %zu frames lie in one plane (%s): they span no volume; is %sTo%s the "
                      "transform meant?\n",
                      args.sweep.c_str(), valid_transforms.size(),
-                     valid_transforms.size() == 1 ? "there is one" : same ? "every frame has the same ImageToReference"
-                                                                          : "they move only within it",
+                     same ? "every frame has the same ImageToReference" : "they move only within it",
                      plan.image_frame.c_str(), plan.reference_frame.c_str());
         return kExitBadInput;
     }

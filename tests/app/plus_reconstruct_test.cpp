@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
@@ -317,6 +318,18 @@ TEST(PlusReconstructionChecks, FramesInOnePlaneAreRefused)
                                          [](int k) { return glm::translate(glm::dmat4(1.0), glm::dvec3(k, 0.5 * k, 0)); });
     args = sliding.args("sliding.nrrd");
     expect_refused(run_captured(args), args, {"one plane", "move only within it"});
+
+    // one valid frame: the others' probe transforms INVALID
+    const SmallCase one = small_case("one", kHalfMillimetre, "");
+    std::string text = test::read_bytes(one.sweep);
+    for (int k = 1; k < 10; ++k) {
+        char field[80];
+        std::snprintf(field, sizeof field, "Seq_Frame%04d_ProbeToTrackerTransformStatus = OK", k);
+        text = test::with(text, field, std::string(field, std::strlen(field) - 2) + "INVALID");
+    }
+    test::write_bytes(one.sweep, text);
+    args = one.args("one.nrrd");
+    expect_refused(run_captured(args), args, {"one frame has a valid image and transform"});
 
     const SmallCase fine = small_case("itself", kHalfMillimetre, "");
     args = fine.args("itself.nrrd");
