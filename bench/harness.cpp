@@ -34,6 +34,7 @@ const std::vector<Suite>& suites()
         {"slice", "echographic image (deform, slice, post) of a pressed frame, 0.3 and 0.1 mm volumes, frames/s", register_slice, true},
         {"haptics", "the 1 kHz haptic loop's period error over 30 s with the physics and headless rendering running; one force computation",
          register_haptics, true},
+        {"arm", "the force path in real time through the simulated arm (its servo, the haptic loop, the physics) over 10 s", register_arm, false},
     };
     return all;
 }
