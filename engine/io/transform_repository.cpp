@@ -142,23 +142,27 @@ FrameTransform TransformRepository::product(const std::vector<Step>& chain) cons
     FrameTransform out;
     for (std::size_t s = 0; s < chain.size(); ++s) {
         const Step& step = chain[s];
-        const FrameTransform* t = held(step.from, step.to);
+        bool as_held = true;  // the link may have been set the other way round since the chain was found
+        const FrameTransform* t = held(step.from, step.to, &as_held);
         if (!t) throw TransformError(step.from + "To" + step.to + ": not held (a chain kept past a change of transforms)");
+        const bool forward = step.forward == as_held;
+        const std::string& from = as_held ? step.from : step.to;
+        const std::string& to = as_held ? step.to : step.from;
+        const std::string name = from + "To" + to;  // as held
         glm::dmat4 m = t->matrix;
-        const std::string name = step.from + "To" + step.to;
         // a transform the tracker marked invalid is not used, whatever its matrix
         if (t->valid) {
-            if (!step.forward && is_singular(m))
-                throw TransformError(name + " is singular: it cannot be inverted to give " + step.to + "To" + step.from);
-            if (step.forward && s > 0 && is_singular(m))
+            if (!forward && is_singular(m))
+                throw TransformError(name + " is singular: it cannot be inverted to give " + to + "To" + from);
+            if (forward && s > 0 && is_singular(m))
                 throw TransformError(name + " is singular (it flattens space onto a plane, a line or a point): a chain of "
                                             "motions cannot pass through it");
-            if (step.forward && s == 0 && flattens_plane(m))
-                throw TransformError(name + " is singular: it maps the " + step.from + " frame's x-y plane onto a line or a "
+            if (forward && s == 0 && flattens_plane(m))
+                throw TransformError(name + " is singular: it maps the " + from + " frame's x-y plane onto a line or a "
                                             "point (pixel steps of no length, or parallel)");
         }
         // an invalid link's matrix only has to stand in: the chain is marked invalid and not used
-        if (!step.forward) m = is_singular(m) ? glm::dmat4(1.0) : glm::inverse(m);
+        if (!forward) m = is_singular(m) ? glm::dmat4(1.0) : glm::inverse(m);
         out.matrix = m * out.matrix;  // link_n * ... * link_1: the first link applies first
         out.valid = out.valid && t->valid;
     }

@@ -167,6 +167,9 @@ TEST(TransformRepository, AChainKeptServesNewMatrices)
     EXPECT_FALSE((*steps)[2].forward);
     repo.set("Probe", "Tracker", rigid(0.4, {1, 0, 0}, {7, 8, 9}));
     expect_near(repo.product(*steps).matrix, repo.get("Image", "Reference").matrix);
+    // a link set the other way round since: the kept chain takes it the other way too
+    repo.set("Tracker", "Reference", glm::inverse(rigid(-0.7, {0.2, 1, 0}, {80, 10, 300})));
+    expect_near(repo.product(*steps).matrix, repo.get("Image", "Reference").matrix);
     expect_near(repo.product(*steps).matrix,
                 glm::inverse(rigid(-0.7, {0.2, 1, 0}, {80, 10, 300})) * rigid(0.4, {1, 0, 0}, {7, 8, 9}) *
                     rigid(0.3, {0, 0, 1}, {-20, 5, 3}));
