@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "physics/probe_sweep.hpp"
+
 namespace echosim::physics {
 namespace {
 
@@ -60,7 +62,7 @@ bool PhysicsRunner::command(const ProbeCommand& c)
 void PhysicsRunner::step_once()
 {
     for (int i = 0; i < model_->options.steps_per_publish; ++i) {
-        state_.probe = in_.read();
+        state_.probe = swept_probe(state_.probe, in_.read(), model_->options.time_step);
         step(*model_, state_, team_);
         if (state_.last.asleep) asleep_.fetch_add(1, std::memory_order_relaxed);
     }

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "physics/physics_fixture.hpp"
+#include "physics/probe_sweep.hpp"
 #include "physics/simulation.hpp"
 #include "core/triple_buffer.hpp"
 
@@ -48,17 +49,17 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
 
     PhysicsRunner runner(m, o);
     runner.command(c);
-    runner.step_to(0.05);
+    runner.step_to(0.1);  // the probe enters from 30 mm behind its face at 0.5 mm a step (probe_sweep.hpp)
     const SurfaceSnapshot& snap = runner.latest();
-    EXPECT_EQ(snap.step, 50);
+    EXPECT_EQ(snap.step, 100);
 
     // by hand, on the runner's own compiled model
     Simulation sim(runner.compiled());
     TissueState& s = sim.state;
-    s.probe.active = true;
-    s.probe.position = c.position;
-    s.probe.orientation = c.orientation;
-    for (int i = 0; i < 50; ++i) sim.step();
+    for (int i = 0; i < 100; ++i) {
+        s.probe = swept_probe(s.probe, c, o.time_step);
+        sim.step();
+    }
     for (Eigen::Index i = 0; i < s.x.size(); ++i) ASSERT_EQ(snap.positions[std::size_t(i)], float(s.x[i]));
     EXPECT_DOUBLE_EQ(snap.probe_force_N, s.last.probe_force_N);
     EXPECT_GT(snap.probe_force_N, 0.5);
@@ -66,11 +67,76 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     // the haptic thread's hand-off: the local model of that same step
     const LocalContactModel& local = runner.latest_contact();
     const LocalContactModel expected = local_contact_model(*sim.model, s);
-    EXPECT_EQ(local.step, 50);
+    EXPECT_EQ(local.step, 100);
     EXPECT_TRUE(local.in_contact);
     EXPECT_DOUBLE_EQ(local.force, s.last.probe_force_N);
     EXPECT_DOUBLE_EQ(local.stiffness, expected.stiffness);
     EXPECT_EQ(local.face, c.position);
+}
+
+// Issue 34: a probe commanded 25 mm into the leg at once (a trajectory's first pose) gave 0 N: the
+// skin it jumped past met its sides, not its face. Swept in, it meets the face: the force is the
+// one the same press reaches by a ramp, within 2 %.
+TEST(PhysicsRunner, AProbeThatStartsDeepInTheLegPushesAsOneThatPressedThere)
+{
+    const tissue::TissueModel m = test::shipped_model(3);
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    const ProbeCommand deep = contact::probe_at(pressed_along_beam(rest, 25.0));
+
+    PhysicsRunner jumped(m, PhysicsOptions{});
+    jumped.command(deep);
+    jumped.step_to(0.6);
+
+    PhysicsRunner ramped(m, PhysicsOptions{});
+    for (int ms = 1; ms <= 600; ++ms) {
+        ramped.command(contact::probe_at(pressed_along_beam(rest, 25.0 * std::min(1.0, ms / 200.0))));
+        ramped.step_to(ms * 1e-3);
+    }
+    EXPECT_GT(ramped.latest().probe_force_N, 10.0);
+    EXPECT_NEAR(jumped.latest().probe_force_N, ramped.latest().probe_force_N, 0.02 * ramped.latest().probe_force_N);
+
+    // and a jump across the skin, pressed, is swept too: 40 mm sideways in one command
+    const Pose beside = test::leg().probe_rest_pose(0.5f, 0.8f);
+    jumped.command(contact::probe_at(pressed_along_beam(beside, 10.0)));
+    jumped.step_to(1.2);
+    PhysicsRunner there(m, PhysicsOptions{});
+    for (int ms = 1; ms <= 600; ++ms) {
+        there.command(contact::probe_at(pressed_along_beam(beside, 10.0 * std::min(1.0, ms / 200.0))));
+        there.step_to(ms * 1e-3);
+    }
+    EXPECT_GT(there.latest().probe_force_N, 3.0);
+    EXPECT_NEAR(jumped.latest().probe_force_N, there.latest().probe_force_N, 0.05 * there.latest().probe_force_N);
+}
+
+// The sweep itself: a probe that appears enters from kProbeEntryMm behind its face, no point of
+// the face moves more than kMaxProbeMoveMm a step, and each swept step's velocity is its motion.
+TEST(ProbeSweep, EntersFromBehindAndNeverMovesMoreThanItsStep)
+{
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    const ProbeCommand target = contact::probe_at(pressed_along_beam(rest, 5.0));
+    contact::ProbeState p;  // inactive
+    p = swept_probe(p, target, 1e-3);
+    const Eigen::Vector3d axis = target.orientation.normalized() * Eigen::Vector3d::UnitY();
+    EXPECT_NEAR((target.position - p.position).dot(axis), kProbeEntryMm - kMaxProbeMoveMm, 1e-9);
+    EXPECT_NEAR(p.velocity.dot(axis), kMaxProbeMoveMm / 1e-3, 1e-6);
+    int steps = 1;
+    while (p.position != target.position && steps < 1000) {
+        const contact::ProbeState before = p;
+        p = swept_probe(p, target, 1e-3);
+        EXPECT_LE((p.position - before.position).norm(), kMaxProbeMoveMm + 1e-12);
+        ++steps;
+    }
+    EXPECT_LE(std::abs(steps - kProbeEntryMm / kMaxProbeMoveMm), 1.0);  // 60, or 61 for the last rounding
+    EXPECT_EQ(p.velocity, target.velocity);  // arrived: the command's own
+    // a turn of 90 degrees about the beam sweeps the array's ends by pi/2 x 20 mm: 63 steps
+    ProbeCommand turned = target;
+    turned.orientation = target.orientation * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
+    steps = 0;
+    while (!p.orientation.isApprox(turned.orientation, 1e-12) && steps < 1000) p = swept_probe(p, turned, 1e-3), ++steps;
+    EXPECT_LE(std::abs(steps - M_PI / 2 * 20.0 / kMaxProbeMoveMm), 1.0);
+    // an inactive command lifts the probe at once
+    ProbeCommand lifted;
+    EXPECT_FALSE(swept_probe(p, lifted, 1e-3).active);
 }
 
 TEST(PhysicsRunner, RefusesACommandThatIsNotAPoseAndKeepsTheLastGoodOne)
