@@ -207,6 +207,9 @@ PlusReconstructionSettings read_reconstruction(const Place& place, std::vector<s
 // those before it on the element, so 50,000 on one element took 10 s (issue 34).
 constexpr std::size_t max_attributes = 256;
 
+// [warnings] listed at most; the rest are counted
+constexpr std::size_t max_warnings = 100;
+
 // The line of the first tag with more than max_attributes attributes (counted as '=' outside quoted
 // values), or 0: looked for in the text before tinyxml2 parses it. Comments, CDATA sections and
 // the document type are skipped; a tag's end found by '>' outside quotes.
@@ -301,6 +304,12 @@ PlusConfig read_plus_config(const std::filesystem::path& path)
         Place{path, *found[1]}.fail("", "a second VolumeReconstruction element (the first is on line " +
                                              std::to_string(found[0]->GetLineNum()) + ")");
     if (!found.empty()) config.reconstruction = read_reconstruction(Place{path, *found[0]}, config.warnings);
+    // a file of a quarter of a million unknown elements is not a screenful of warnings each
+    if (config.warnings.size() > max_warnings) {
+        const std::size_t more = config.warnings.size() - max_warnings;
+        config.warnings.resize(max_warnings);
+        config.warnings.push_back(path.string() + ": " + std::to_string(more) + " more warnings like these, not listed");
+    }
     return config;
 }
 

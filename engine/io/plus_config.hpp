@@ -61,7 +61,8 @@ struct PlusConfigTransform {
 struct PlusConfig {
     std::vector<PlusConfigTransform> transforms;
     std::optional<PlusReconstructionSettings> reconstruction;
-    std::vector<std::string> warnings;  // "FILE:LINE: VolumeReconstruction: FanAnglesDeg ... not supported: ..."
+    std::vector<std::string> warnings;  // "FILE:LINE: VolumeReconstruction: FanAnglesDeg ... not supported: ...";
+                                        // 100 at most, then one saying how many more
 };
 
 // Throws PlusConfigError naming the file (and line and attribute) when it is not a regular file,
