@@ -15,6 +15,7 @@
 #include "app/volume_source.hpp"
 #include "echo/echo_image_cpu.hpp"
 #include "echo/kernel_params.hpp"
+#include "echo/volume_placement.hpp"
 #include "gpu/context.hpp"
 #include "image/echo_image_gpu.hpp"
 #include "io/png.hpp"
@@ -91,7 +92,18 @@ int run_slice(const SliceArgs& args)
     session::Session session(options);
     session::SettleReport settle;  // none: resting on the skin
     try {
-        const Pose rest = args.pose.empty() ? session.probe().rest : parse_pose(args.pose);
+        Pose rest = args.pose.empty() ? session.probe().rest : parse_pose(args.pose);
+        // a user's volume need not lie in our leg's space: where the exam patch's centre misses
+        // most of it, the default is the volume's own middle, and the pose is said
+        if (args.pose.empty() && !args.volume.empty()) {
+            const Pose on_volume = echo::pose_on_volume(*volumes.volume);
+            if (const double coverage = echo::plane_coverage(*volumes.volume, options.image, rest);
+                coverage < 0.5 && echo::plane_coverage(*volumes.volume, options.image, on_volume) > coverage) {
+                rest = on_volume;
+                std::printf("echosim slice: the exam patch's centre misses %s: sliced on the volume's middle instead, --pose %s\n",
+                            args.volume.c_str(), format_pose(rest).c_str());
+            }
+        }
         session.place_probe({rest, 0.0});
         // press_to_force leaves the tissue settled at the press it found
         if (args.force_n >= 0)
@@ -108,6 +120,11 @@ int run_slice(const SliceArgs& args)
     const session::SessionView& view = session.view();
     echo::EchoFrame frame = *view.echo;
     frame.time_s = args.time_s;  // the heart's phase the user asked for, not the settle's
+    // a plane that misses the volume would image nothing but black: not an answer
+    const double coverage = echo::plane_coverage(*volumes.volume, options.image, frame.face);
+    if (coverage == 0)
+        return fail("the image plane at --pose " + format_pose(frame.face) + " misses " + volumes.description +
+                    " entirely: nothing written (give a --pose on the volume)");
     if (!(view.press_mm > 0)) frame.columns.clear();  // resting on the skin: the undeformed image
     echo::ScannerSettings scanner;
     scanner.gain_db = args.gain_db;
@@ -141,6 +158,8 @@ int run_slice(const SliceArgs& args)
         io::write_nrrd(args.out, image_volume(image, options.image, frame.face, *volumes.volume), true);
     std::printf("echosim slice: %ux%u image of %s on %s in %.0f ms, written to %s\n", image.columns, image.rows, volumes.description.c_str(),
                 device.c_str(), ms, args.out.c_str());
+    if (coverage < 0.995)
+        std::printf("echosim slice: %.0f %% of the image lies outside the volume (black there)\n", 100 * (1 - coverage));
     if (view.press_mm > 0)
         std::printf("echosim slice: probe pressed %.1f mm, tissue pushes back %.2f N (ripple +/- %.2f N; %.1f kPa over the face)\n",
                     settle.press_mm, settle.force_N, settle.ripple_N, frame.skin_pressure_kpa);

@@ -49,3 +49,21 @@ execute_process(COMMAND ${ECHOSIM} slice --out ${WORK}/never.png --pose 0,0,nan,
 if(NOT rc EQUAL 2 OR NOT err MATCHES "--pose" OR EXISTS ${WORK}/never.png)
   message(FATAL_ERROR "a NaN pose was not refused by name (${rc}):\n${err}")
 endif()
+# issue 34: a user's own volume away from our leg (a 2-D MetaImage, one slice, 20 x 10 mm at the
+# origin): without --pose the image is made on the volume's middle and says so, on the GPU and on
+# the CPU twin (whose index of size - 2 on the one-voxel axis crashed); a plane that misses the
+# volume writes nothing and says so (it wrote a black image with exit 0)
+string(REPEAT "A" 200 voxels)
+file(WRITE ${WORK}/one_slice.mha "ObjectType = Image\nNDims = 2\nBinaryData = True\nElementSpacing = 1 1\nOffset = 100 100\nDimSize = 20 10\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n${voxels}")
+foreach(backend --cpu "--gpu;cpu;--validation")
+  run_ok("slice of a 2-D volume (${backend})" slice --volume ${WORK}/one_slice.mha --out ${WORK}/one_slice.png ${backend})
+  if(NOT last_out MATCHES "misses [^\n]*one_slice.mha: sliced on the volume's middle instead, --pose 109\\.500,99\\.500,0\\.000,"
+     OR NOT last_out MATCHES "9[0-9] % of the image lies outside the volume")
+    message(FATAL_ERROR "the default pose was not placed on the user's volume (${backend}):\n${last_out}")
+  endif()
+endforeach()
+execute_process(COMMAND ${ECHOSIM} slice --volume ${WORK}/one_slice.mha --pose 0,0,0,1,0,0,0 --out ${WORK}/black.png --cpu
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "misses [^\n]*one_slice.mha[^\n]* entirely: nothing written" OR EXISTS ${WORK}/black.png)
+  message(FATAL_ERROR "a plane missing the volume was not said (${rc}):\n${out}${err}")
+endif()
