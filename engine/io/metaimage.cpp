@@ -201,13 +201,15 @@ std::vector<double> MetaImageHeader::numbers(const MetaImageField& field, std::s
     return out;
 }
 
-MetaImageHeader read_metaimage_header(std::istream& in, const std::filesystem::path& path)
+MetaImageHeader read_metaimage_header(std::istream& in, const std::filesystem::path& path, std::uint64_t max_header_bytes)
 {
     MetaImageHeader header(path);
     std::string line;
+    std::uint64_t bytes = 0;
     for (std::size_t number = 1;; ++number) {
         if (!text::read_header_line<MetaImageError>(in, line, path, "MetaImage"))
             fail(path, "truncated header: the file ends before ElementDataFile, the header's last field");
+        text::count_header_bytes<MetaImageError>(bytes, line, max_header_bytes, path);
         if (text::trim(line).empty()) continue;
         const auto eq = line.find('=');
         const std::string_view name = text::trim(std::string_view(line).substr(0, std::min(eq, line.size())));

@@ -104,7 +104,10 @@ private:
 // ElementDataFile, leaving `in` at the first byte after that line: the data, when LOCAL. Throws
 // naming the file and line for a line that is not `Name = Value`, a field given twice, or a file
 // that ends before ElementDataFile.
-MetaImageHeader read_metaimage_header(std::istream& in, const std::filesystem::path& path);
+// A header longer than `max_header_bytes` is refused as it is read (a sequence's reader, which
+// bounds its header itself, passes text::unbounded_header_bytes).
+MetaImageHeader read_metaimage_header(std::istream& in, const std::filesystem::path& path,
+                                      std::uint64_t max_header_bytes = text::max_volume_header_bytes);
 
 // [bytes] of element data the header describes: product(DimSize) * ElementNumberOfChannels *
 // element_size(ElementType). Throws naming DimSize when the product overflows 64 bits or exceeds

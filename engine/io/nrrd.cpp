@@ -271,15 +271,17 @@ std::vector<std::uint64_t> NrrdHeader::sizes() const
     return out;
 }
 
-NrrdHeader read_nrrd_header(std::istream& in, const std::filesystem::path& path)
+NrrdHeader read_nrrd_header(std::istream& in, const std::filesystem::path& path, std::uint64_t max_header_bytes)
 {
     NrrdHeader header;
     header.path = path;
     std::string line;
     if (!read_line(in, line, path) || line.size() != 8 || !line.starts_with("NRRD000") || line[7] < '1' || line[7] > '5')
         fail(path, "not a NRRD file: the first line is not the magic 'NRRD0001' to 'NRRD0005'");
+    std::uint64_t bytes = line.size() + 1;
     for (std::size_t number = 2;; ++number) {
         if (!read_line(in, line, path)) fail(path, "the header ends without the blank line before the data (truncated file?)");
+        text::count_header_bytes<NrrdError>(bytes, line, max_header_bytes, path);
         if (line.empty()) break;
         if (line[0] == '#') continue;
         const auto kv = line.find(":=");

@@ -29,6 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/printable_text.hpp"
+#include "io/text_fields.hpp"
 
 namespace echosim::io {
 
@@ -136,7 +137,9 @@ struct NrrdHeader {
 };
 
 // Reads the magic line and the header up to its blank line, leaving `in` at the first data byte.
-NrrdHeader read_nrrd_header(std::istream& in, const std::filesystem::path& path);
+// A header longer than `max_header_bytes` is refused as it is read (a sequence's reader, which
+// bounds its header itself, passes text::unbounded_header_bytes).
+NrrdHeader read_nrrd_header(std::istream& in, const std::filesystem::path& path, std::uint64_t max_header_bytes = text::max_volume_header_bytes);
 
 // Reads the data that follows the header: product(sizes) voxels of type(), decoded from the
 // header's encoding (raw, gzip). Checks endian, refuses detached data, sizes that overflow or exceed

@@ -328,7 +328,7 @@ VoxelType sweep_pixel_type(const MetaImageHeader& meta)
 
 PlusRecording read_mha(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
 {
-    const MetaImageHeader meta = read_metaimage_header(in, path);
+    const MetaImageHeader meta = read_metaimage_header(in, path, text::unbounded_header_bytes);  // check_header_size bounded it
     SequenceHeader header;
     for (const MetaImageField& f : meta.fields())
         if (f.name != "ElementDataFile") add_field(path, header, f.name, f.value);
@@ -353,7 +353,7 @@ PlusRecording read_mha(const std::filesystem::path& path, std::istream& in, std:
 
 PlusRecording read_seq_nrrd(const std::filesystem::path& path, std::istream& in, std::uint64_t budget)
 {
-    const NrrdHeader nrrd = read_nrrd_header(in, path);
+    const NrrdHeader nrrd = read_nrrd_header(in, path, text::unbounded_header_bytes);  // check_header_size bounded it
     const VoxelType type = nrrd.type();
     SequenceHeader header;
     for (const auto& [key, value] : nrrd.key_values) add_field(path, header, key, value);

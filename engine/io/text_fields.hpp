@@ -99,6 +99,22 @@ std::ifstream open_binary(const std::filesystem::path& path)
     return in;
 }
 
+// The largest header a volume file (NRRD, MetaImage) may have [bytes]: a volume's header is some
+// twenty lines; a larger one is junk, and kept field by field it cost 20 times its size (a 169 MB
+// MetaImage header took 3.8 GB: issue 34). A sequence's header grows with its frames and is
+// bounded by its own reader (plus_sequence.cpp) before it is parsed.
+inline constexpr std::uint64_t max_volume_header_bytes = std::uint64_t(1) << 20;
+inline constexpr std::uint64_t unbounded_header_bytes = ~std::uint64_t(0);
+
+// Counts a header's bytes as its lines are read; throws Error naming the file once past `most`.
+template <class Error>
+void count_header_bytes(std::uint64_t& bytes, const std::string& line, std::uint64_t most, const std::filesystem::path& path)
+{
+    bytes += line.size() + 1;
+    if (bytes > most)
+        fail<Error>(path, "the header runs past " + std::to_string(most) + " bytes, more than a volume's header needs: not a volume's header");
+}
+
 // The longest header line the text-header readers (NRRD, PLUS) accept [bytes]: a longer "line" is
 // binary junk, and reading on would only fill memory.
 inline constexpr std::size_t max_header_line = std::size_t(1) << 20;

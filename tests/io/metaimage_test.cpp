@@ -239,6 +239,10 @@ TEST(MetaImage, RejectsBadHeadersNamingFileAndField)
     expect_file_error("longer.mha", with(good, "DimSize = 4 3 2", "DimSize = 4 3 1"),
                       {"ElementDataFile", "12 bytes more", "(12 bytes)"});
     expect_file_error("onemore.mha", good + "x", {"ElementDataFile", "1 byte more", "(24 bytes)"});
+    // a header of megabytes is junk, refused as it is read (a 169 MB one was kept field by field: 3.8 GB)
+    std::string fields;
+    for (int i = 0; i < 1100; ++i) fields += "Field" + std::to_string(i) + " = " + std::string(1000, 'x') + "\n";
+    expect_file_error("longheader.mha", fields + good, {"the header runs past 1048576 bytes", "not a volume's header"});
     expect_file_error("garbage.mha", "\x89PNG\r\n\x1a\n\x00\x00", {"line 1", "not 'Name = Value'"});
     expect_file_error("twice.mha", with(good, "Offset = -10 20 5\n", "Offset = -10 20 5\nOffset = 1 2 3\n"),
                       {"Offset (line 8)", "twice", "line 7"});

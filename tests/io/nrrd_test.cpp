@@ -307,6 +307,24 @@ TEST(Nrrd, RejectsAHeaderWithoutItsBlankLine)
     std::filesystem::remove(path);
 }
 
+// Issue 34: a header of megabytes (here 1.5 MiB of comments, then key/values) is junk, refused as it
+// is read instead of kept line by line (a 169 MB one took 3.8 GB); one just under 1 MiB is read.
+TEST(Nrrd, RejectsAHeaderLongerThanAVolumeNeeds)
+{
+    const std::string comments = [] {
+        std::string c;
+        for (int i = 0; i < 1500; ++i) c += "# " + std::string(1022, 'x') + "\n";
+        return c;
+    }();
+    const auto at = slicer_header.find('\n') + 1;
+    expect_header_error("long_header.nrrd", slicer_header.substr(0, at) + comments + slicer_header.substr(at),
+                        {"the header runs past 1048576 bytes", "not a volume's header"});
+    const auto path = temp("long_ok.nrrd");
+    write_bytes(path, slicer_header.substr(0, at) + comments.substr(0, 1000 * 1025) + slicer_header.substr(at) + slicer_data());
+    EXPECT_NO_THROW(read_nrrd(path));
+    std::filesystem::remove(path);
+}
+
 TEST(Nrrd, RejectsDataBeyondTheMemoryBudget)
 {
     const auto path = temp("budget.nrrd");
