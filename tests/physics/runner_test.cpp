@@ -74,6 +74,17 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     EXPECT_EQ(local.face, c.position);
 }
 
+// The force on a probe pressed `press_mm` into the skin at `rest` over 0.2 s and held to 0.6 s.
+double force_pressed_by_a_ramp(const tissue::TissueModel& m, const Pose& rest, double press_mm)
+{
+    PhysicsRunner runner(m, PhysicsOptions{});
+    for (int ms = 1; ms <= 600; ++ms) {
+        runner.command(contact::probe_at(pressed_along_beam(rest, press_mm * std::min(1.0, ms / 200.0))));
+        runner.step_to(ms * 1e-3);
+    }
+    return runner.latest().probe_force_N;
+}
+
 // Issue 34: a probe commanded 25 mm into the leg at once (a trajectory's first pose) gave 0 N: the
 // skin it jumped past met its sides, not its face. Swept in, it meets the face: the force is the
 // one the same press reaches by a ramp, within 2 %.
@@ -87,25 +98,17 @@ TEST(PhysicsRunner, AProbeThatStartsDeepInTheLegPushesAsOneThatPressedThere)
     jumped.command(deep);
     jumped.step_to(0.6);
 
-    PhysicsRunner ramped(m, PhysicsOptions{});
-    for (int ms = 1; ms <= 600; ++ms) {
-        ramped.command(contact::probe_at(pressed_along_beam(rest, 25.0 * std::min(1.0, ms / 200.0))));
-        ramped.step_to(ms * 1e-3);
-    }
-    EXPECT_GT(ramped.latest().probe_force_N, 10.0);
-    EXPECT_NEAR(jumped.latest().probe_force_N, ramped.latest().probe_force_N, 0.02 * ramped.latest().probe_force_N);
+    const double ramped = force_pressed_by_a_ramp(m, rest, 25.0);
+    EXPECT_GT(ramped, 10.0);
+    EXPECT_NEAR(jumped.latest().probe_force_N, ramped, 0.02 * ramped);
 
     // and a jump across the skin, pressed, is swept too: 40 mm sideways in one command
     const Pose beside = test::leg().probe_rest_pose(0.5f, 0.8f);
     jumped.command(contact::probe_at(pressed_along_beam(beside, 10.0)));
     jumped.step_to(1.2);
-    PhysicsRunner there(m, PhysicsOptions{});
-    for (int ms = 1; ms <= 600; ++ms) {
-        there.command(contact::probe_at(pressed_along_beam(beside, 10.0 * std::min(1.0, ms / 200.0))));
-        there.step_to(ms * 1e-3);
-    }
-    EXPECT_GT(there.latest().probe_force_N, 3.0);
-    EXPECT_NEAR(jumped.latest().probe_force_N, there.latest().probe_force_N, 0.05 * there.latest().probe_force_N);
+    const double there = force_pressed_by_a_ramp(m, beside, 10.0);
+    EXPECT_GT(there, 3.0);
+    EXPECT_NEAR(jumped.latest().probe_force_N, there, 0.05 * there);
 }
 
 // The sweep itself: a probe that appears enters from kProbeEntryMm behind its face, no point of
