@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "app/terminal_progress.hpp"
+#include "core/printable_text.hpp"
 #include "echo/phantom.hpp"
 #include "echo/reconstruct.hpp"
 #include "io/nrrd.hpp"
@@ -227,17 +228,18 @@ int run_reconstruct(const ReconstructArgs& args)
             std::fprintf(stderr,
                          "echosim reconstruct: the image frame and the reference frame are both %s: every frame would be "
                          "reconstructed at the identity, all in one plane (choose another --image-to-reference)\n",
-                         plan.image_frame.c_str());
+                         printable(plan.image_frame).c_str());
             return kExitBadInput;
         }
         if (!args.config.empty()) warn_also_recorded(plan, args, recording);
         sweep = io::resolve_sweep(args.sweep, std::move(recording), plan.calibration, plan.image_frame, plan.reference_frame);
         if (std::filesystem::exists(label_sweep_path(args.sweep))) labels = io::read_plus_sequence(label_sweep_path(args.sweep));
     } catch (const std::runtime_error& e) {  // the file readers' errors, each naming its file and field
-        std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
+        std::fprintf(stderr, "echosim reconstruct: %s\n", printable(e.what()).c_str());
         return kExitBadInput;
     }
-    for (const std::string& w : plan.warnings) std::fprintf(stderr, "echosim reconstruct: warning: %s\n", w.c_str());
+    // warnings quote the configuration's and the recording's names: escaped, as the readers' errors are
+    for (const std::string& w : plan.warnings) std::fprintf(stderr, "echosim reconstruct: warning: %s\n", printable(w).c_str());
     const bool with_labels = labels.frames.size() == sweep.frames.size() && labels.width == sweep.width &&
                              labels.height == sweep.height && labels.pixel_type == io::VoxelType::uint8;
 
@@ -286,7 +288,7 @@ int run_reconstruct(const ReconstructArgs& args)
                      "transform meant?\n",
                      args.sweep.c_str(), valid_transforms.size(),
                      same ? "every frame has the same ImageToReference" : "they move only within it",
-                     plan.image_frame.c_str(), plan.reference_frame.c_str());
+                     printable(plan.image_frame).c_str(), printable(plan.reference_frame).c_str());
         return kExitBadInput;
     }
     std::unique_ptr<echo::Reconstructor> r;
@@ -315,12 +317,12 @@ int run_reconstruct(const ReconstructArgs& args)
                          "reached by none of the %zu frames (they lie within %g %g %g to %g %g %g mm in %s)\n",
                          plan.extent_at.c_str(), grid.origin.x, grid.origin.y, grid.origin.z, far.x, far.y, far.z,
                          valid_transforms.size(), theirs.origin.x, theirs.origin.y, theirs.origin.z, their_far.x, their_far.y,
-                         their_far.z, plan.reference_frame.c_str());
+                         their_far.z, printable(plan.reference_frame).c_str());
             return kExitBadInput;
         }
         r = std::make_unique<echo::Reconstructor>(grid, options);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "echosim reconstruct: %s\n", e.what());
+        std::fprintf(stderr, "echosim reconstruct: %s\n", printable(e.what()).c_str());
         return kExitBadInput;
     }
     const echo::VoxelGrid& grid = r->grid();
@@ -328,7 +330,7 @@ int run_reconstruct(const ReconstructArgs& args)
                 name_of(options.splat), name_of(options.compounding), plan.fill_holes ? "filled" : "left empty",
                 plan.extent ? "the configuration's" : plan.plus_grid ? "PLUS's" : "a sweep-aligned", grid.size[0], grid.size[1],
                 grid.size[2], grid.spacing.x, grid.spacing.y, grid.spacing.z,
-                plan.reference_frame.c_str());
+                printable(plan.reference_frame).c_str());
 
     TerminalProgress progress("echosim reconstruct: ");
     const std::string inserting = "inserting the frames (" + std::to_string(valid_transforms.size()) + ")";

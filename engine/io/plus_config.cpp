@@ -36,7 +36,8 @@ struct Place {
 
     std::string at(std::string_view attribute = {}) const
     {
-        std::string s = path.string() + ":" + std::to_string(element.GetLineNum()) + ": " + element.Name();
+        // an element's name is the file's text: tinyxml2 takes any byte of 0x80 and above in it
+        std::string s = path.string() + ":" + std::to_string(element.GetLineNum()) + ": " + printable(element.Name());
         if (!attribute.empty()) s += ": " + std::string(attribute);
         return s;
     }

@@ -337,6 +337,29 @@ TEST(PlusReconstructionChecks, FramesInOnePlaneAreRefused)
     expect_refused(run_captured(args), args, {"both Image", "one plane"});
 }
 
+// Issue 34: names from the configuration are printed escaped, as the readers' errors are: a frame
+// named with a terminal's escape sequence (tinyxml2 turns &#x1b; into the byte) and an element
+// whose name holds a lone 0x9b (an 8-bit terminal's CSI) reach stderr as \x1b, \x07 and \x9b.
+TEST(PlusReconstructionChecks, NamesFromTheConfigurationArePrintedEscaped)
+{
+    const SmallCase c = small_case("escape", kHalfMillimetre,
+                                   "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\" ImageCoordinateFrame=\"&#x1b;]0;owned&#x07;\" "
+                                   "ReferenceCoordinateFrame=\"&#x1b;]0;owned&#x07;\"/>");
+    ReconstructArgs args = c.args("escape.nrrd");
+    Outcome r = run_captured(args);
+    expect_refused(r, args, {"both \\x1b]0;owned\\x07", "one plane"});
+    for (const char raw : {'\x1b', '\x07'}) EXPECT_EQ(r.err.find(raw), std::string::npos) << r.err;
+
+    // a warning naming an element the reconstruction does not know, in a run that succeeds
+    const SmallCase odd = small_case("odd", kHalfMillimetre, "<VolumeReconstruction OutputSpacing=\"0.5 0.5 0.5\"><Odd\x9b" "Element/></VolumeReconstruction>");
+    args = odd.args("odd.nrrd");
+    r = run_captured(args);
+    EXPECT_EQ(r.rc, kExitOk) << r.err;
+    EXPECT_NE(r.err.find("Odd\\x9bElement"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\x9b'), std::string::npos) << r.err;
+    std::filesystem::remove(args.out);
+}
+
 // A calibration that flattens the image to a line, and a tracker transform that is singular.
 TEST(PlusReconstructionChecks, ASingularCalibrationOrChainIsRefusedByName)
 {
