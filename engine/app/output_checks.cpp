@@ -139,7 +139,7 @@ void write_together(const std::vector<std::filesystem::path>& paths,
     // one staging folder per destination folder (rename does not cross file systems)
     std::vector<Staging> staging(paths.size());
     for (std::size_t i = 0; i < paths.size(); ++i) {
-        io::remove_stale(folder_of(paths[i]), kStagingMarker, "");
+        io::remove_stale(folder_of(paths[i]), kStagingMarker, std::string(), io::TempKind::folders);
         try {
             staging[i].temp = io::create_owned_folder(folder_of(paths[i]), "", kStagingMarker);
         } catch (const std::system_error& e) {

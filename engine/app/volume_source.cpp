@@ -13,6 +13,7 @@
 #include "echo/case_volume.hpp"
 #include "echo/echo_image_cpu.hpp"
 #include "io/owned_temp.hpp"
+#include "io/partial_file.hpp"
 #include "io/volume_file.hpp"
 #include "scene/leg.hpp"
 
@@ -22,8 +23,8 @@ namespace {
 // Bump when the phantom, the B-mode model, the sweep or the reconstruction change what they make.
 constexpr const char* kRecipe = "v1";
 
-// What a cached pair's folder is called while it is being written: NAME MARKER PID-SIX.
-constexpr const char* kPartialMarker = ".partial-";
+// A cached pair's folder while it is being written is NAME io::kPartialMarker PID-SIX.
+using io::kPartialMarker;
 
 // f(const T* voxels) with the volume's own voxel type.
 template <class F>
@@ -121,7 +122,7 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     const std::filesystem::path volume_file = folder / "volume.nrrd", labels_file = folder / "labels.nrrd";
     std::error_code ec;
     // pairs that runs killed while making them left half written (any case's, any recipe's)
-    io::remove_stale(folder.parent_path(), kPartialMarker);
+    io::remove_stale(folder.parent_path(), kPartialMarker, std::nullopt, io::TempKind::folders);
     if (std::filesystem::exists(volume_file) && std::filesystem::exists(labels_file)) {
         try {
             VolumePair pair = user_volume(volume_file, labels_file);

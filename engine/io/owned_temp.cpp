@@ -1,5 +1,6 @@
 #include "io/owned_temp.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstdlib>
@@ -43,6 +44,9 @@ pid_t owned_pid(const std::string& name, const std::string& marker, std::string*
     if (name.size() < marker.size() + 2 + kRandomChars) return 0;
     const std::size_t dash = name.size() - kRandomChars - 1;
     if (name[dash] != '-') return 0;
+    // the six are mkdtemp's or random_chars': letters and digits (a user's "out.nrrd.partial-2024-drafts" is not ours)
+    for (std::size_t i = dash + 1; i < name.size(); ++i)
+        if (!std::isalnum(static_cast<unsigned char>(name[i]))) return 0;
     std::size_t digits = dash;
     while (digits > 0 && name[digits - 1] >= '0' && name[digits - 1] <= '9') --digits;
     if (digits == dash || dash - digits > 10 || digits < marker.size()) return 0;
@@ -115,7 +119,8 @@ std::optional<std::string> owned_head(const std::string& name, const std::string
     return head;
 }
 
-std::size_t remove_stale(const std::filesystem::path& folder, const std::string& marker, const std::optional<std::string>& head)
+std::size_t remove_stale(const std::filesystem::path& folder, const std::string& marker, const std::optional<std::string>& head,
+                         TempKind kind)
 {
     std::size_t removed = 0;
     std::error_code ec;
@@ -123,9 +128,11 @@ std::size_t remove_stale(const std::filesystem::path& folder, const std::string&
         const std::string name = it->path().filename().string();
         std::string h;
         const pid_t pid = owned_pid(name, marker, &h);
-        if (pid == 0 || (head && !head->empty() && h != *head)) continue;
+        if (pid == 0 || (head && h != *head)) continue;
         struct stat st {};
-        if (::lstat(it->path().c_str(), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISDIR(st.st_mode))) continue;  // never a link
+        if (::lstat(it->path().c_str(), &st) != 0 || st.st_uid != ::geteuid()) continue;  // never a link, nor another user's
+        const bool file = S_ISREG(st.st_mode), dir = S_ISDIR(st.st_mode);
+        if (!(kind == TempKind::files ? file : kind == TempKind::folders ? dir : file || dir)) continue;
         if (!owner_gone(it->path(), pid, st)) continue;
         std::error_code remove_ec;
         if (std::filesystem::remove_all(it->path(), remove_ec) > 0 && !remove_ec) ++removed;

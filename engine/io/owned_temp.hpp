@@ -43,9 +43,14 @@ OwnedTemp create_owned_folder(const std::filesystem::path& folder, const std::st
 // The HEAD of `name` when it is a temporary's name with this marker (HEAD MARKER PID "-" SIX).
 std::optional<std::string> owned_head(const std::string& name, const std::string& marker);
 
-// Removes, from `folder`, the temporaries with this marker (and this head, unless it is empty)
-// whose owner is gone: files and folders, never a link or anything else. Errors are ignored (a
-// stale temporary is clutter, not a failure); returns how many were removed.
-std::size_t remove_stale(const std::filesystem::path& folder, const std::string& marker, const std::optional<std::string>& head = {});
+// What a sweep of stale temporaries may remove: the kind its writer makes, nothing else.
+enum class TempKind { files, folders, both };
+
+// Removes, from `folder`, the temporaries with this marker (and exactly this head, when one is
+// given: "" is the empty head) whose owner is gone: of `kind`, owned by this user, named exactly as
+// create_owned_* names them (six letters or digits last), never a link or anything else. Errors are
+// ignored (a stale temporary is clutter, not a failure); returns how many were removed.
+std::size_t remove_stale(const std::filesystem::path& folder, const std::string& marker, const std::optional<std::string>& head = {},
+                         TempKind kind = TempKind::both);
 
 }  // namespace echosim::io

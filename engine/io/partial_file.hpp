@@ -27,8 +27,9 @@
 
 namespace echosim::io {
 
-// What a partial file's name adds to (the head of) its file's name.
-inline constexpr const char* kPartialMarker = ".partial-";
+// What a partial file's name adds to (the head of) its file's name: ours alone, so that the sweep of
+// stale ones never takes a user's "out.nrrd.partial-2024-drafts" for one.
+inline constexpr const char* kPartialMarker = ".echosim-partial-";
 
 // The head of the partial file of a file named `name` in a folder whose names may have `name_max`
 // bytes: the name itself, or cut short so that the whole temporary's name fits.
@@ -48,7 +49,7 @@ public:
         const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
         const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
         const std::string head = partial_head(path.filename().string(), name_max > 0 ? std::size_t(name_max) : NAME_MAX);
-        remove_stale(folder, kPartialMarker, head);
+        remove_stale(folder, kPartialMarker, head, TempKind::files);
         OwnedTemp tmp;
         try {
             tmp = create_owned_file(folder, head, kPartialMarker);
@@ -82,12 +83,16 @@ public:
 
     void commit()
     {
-        std::FILE* f = std::exchange(file_, nullptr);
-        if (std::fclose(f) != 0) fail("write failed: " + std::generic_category().message(errno));
+        // flushed, then renamed while the descriptor (and with it the lock) is still held: closed
+        // first, the lock would be free for a moment in which another writer's sweep could take a
+        // temporary whose writer had paused for long for a stale one
+        if (std::fflush(file_) != 0) fail("write failed: " + std::generic_category().message(errno));
         std::error_code ec;
         std::filesystem::rename(tmp_, path_, ec);
         if (ec) fail("cannot rename the finished file into place: " + ec.message());
         committed_ = true;
+        std::FILE* f = std::exchange(file_, nullptr);
+        if (std::fclose(f) != 0) fail("write failed: " + std::generic_category().message(errno));
     }
 
     [[noreturn]] void fail(const std::string& why) const { text::fail<Error>(path_, why); }

@@ -92,10 +92,10 @@ TEST(VolumeSource, RemovesTheHalfWrittenCacheOfARunThatIsGone)
     const pid_t child = ::fork();
     if (child == 0) ::_exit(0);
     ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // its PID names no process now
-    const auto killed = folder.parent_path() / (folder.filename().string() + ".partial-" + std::to_string(child) + "-abc123");
+    const auto killed = folder.parent_path() / (folder.filename().string() + ".echosim-partial-" + std::to_string(child) + "-abc123");
     std::filesystem::create_directories(killed);
     io::write_volume(killed / "volume.nrrd", io::make_volume({4, 2, 2}, io::VoxelType::uint8), false);
-    const io::OwnedTemp live = io::create_owned_folder(folder.parent_path(), "other-0.3mm-v1", ".partial-");
+    const io::OwnedTemp live = io::create_owned_folder(folder.parent_path(), "other-0.3mm-v1", ".echosim-partial-");
     const auto unrelated = folder.parent_path() / "notes.partial";
     test::write_bytes(unrelated, "mine");
 

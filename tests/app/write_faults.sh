@@ -48,7 +48,7 @@ check_untouched() {
     [[ "$(cat "$f")" == "old result $rel" ]] || fail "$what: $rel was changed"
   done < <(find "$dir" -type f)
   local stray
-  stray=$(find "$dir" -name '*.partial' -o -name '*.partial-*' -o -name '.echosim-writing-*' | head -1)
+  stray=$(find "$dir" -name '*.partial' -o -name '*.partial-*' -o -name '*.echosim-partial-*' -o -name '.echosim-writing-*' | head -1)
   [[ -z "$stray" ]] || fail "$what: left $stray behind"
 }
 

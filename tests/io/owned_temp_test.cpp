@@ -72,24 +72,29 @@ TEST(OwnedTemp, RemovesOnlyTemporariesWhoseOwnerIsGone)
     std::filesystem::create_symlink(folder / "elsewhere", folder / (".w-" + dead + "-333333"));  // a link: never
     ::mkfifo((folder / (".w-" + dead + "-444444")).c_str(), 0600);                               // not a file: never
     test::write_bytes(folder / ("x.w-" + dead + "-555555"), "");  // another head: kept when a head is asked for
+    std::filesystem::create_directories(folder / (".w-" + dead + "-2024-drafts"));  // a name of the shape, not ours: never
 
-    EXPECT_EQ(remove_stale(folder, ".w-", ""), 3u);  // an empty head: any head
+    EXPECT_EQ(remove_stale(folder, ".w-", ""), 2u);  // the empty head only
     EXPECT_TRUE(std::filesystem::exists(held.path));
     EXPECT_FALSE(std::filesystem::exists(folder / (".w-" + dead + "-000000")));
     EXPECT_TRUE(std::filesystem::exists(folder / (".w-" + alive + "-111111")));
     EXPECT_FALSE(std::filesystem::exists(folder / (".w-" + alive + "-222222")));
     EXPECT_TRUE(std::filesystem::is_symlink(folder / (".w-" + dead + "-333333")));
     EXPECT_TRUE(std::filesystem::is_fifo(folder / (".w-" + dead + "-444444")));
-    EXPECT_FALSE(std::filesystem::exists(folder / ("x.w-" + dead + "-555555")));
+    EXPECT_TRUE(std::filesystem::exists(folder / ("x.w-" + dead + "-555555")));
+    EXPECT_TRUE(std::filesystem::exists(folder / (".w-" + dead + "-2024-drafts")));
 
-    test::write_bytes(folder / ("x.w-" + dead + "-555555"), "");
     test::write_bytes(folder / ("y.w-" + dead + "-555555"), "");
     EXPECT_EQ(remove_stale(folder, ".w-", std::string("y")), 1u);
     EXPECT_TRUE(std::filesystem::exists(folder / ("x.w-" + dead + "-555555")));
 
+    // a sweep for folders leaves files of the same name alone, and one for files folders
     ::close(held.fd);  // its owner is done with it: old and unlocked, it is stale now
-    EXPECT_EQ(remove_stale(folder, ".w-"), 2u);
+    EXPECT_EQ(remove_stale(folder, ".w-", std::nullopt, TempKind::files), 1u);  // x.w-: any head
+    EXPECT_TRUE(std::filesystem::exists(held.path));
+    EXPECT_EQ(remove_stale(folder, ".w-", std::nullopt, TempKind::folders), 1u);
     EXPECT_FALSE(std::filesystem::exists(held.path));
+    EXPECT_TRUE(std::filesystem::exists(folder / (".w-" + dead + "-2024-drafts")));
     std::filesystem::remove_all(folder);
 }
 

@@ -38,7 +38,7 @@ TEST(PartialFile, RefusesToReplaceWhatIsNotARegularFile)
             EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
         }
         for (const auto& e : std::filesystem::directory_iterator(path.parent_path()))
-            EXPECT_EQ(e.path().filename().string().find(path.filename().string() + ".partial"), std::string::npos) << e.path();
+            EXPECT_EQ(e.path().filename().string().find(path.filename().string() + kPartialMarker), std::string::npos) << e.path();
     }
     EXPECT_TRUE(std::filesystem::is_fifo(fifo));
     EXPECT_TRUE(std::filesystem::is_directory(folder));
@@ -120,14 +120,18 @@ TEST(PartialFile, RemovesTheTemporariesOfWritersThatAreGone)
     ASSERT_GT(child, 0);
     ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // gone: its PID names no process now
     const std::string dead = std::to_string(child);
-    test::write_bytes(folder / ("out.txt.partial-" + dead + "-abc123"), "killed midway");
-    test::write_bytes(folder / ("other.txt.partial-" + dead + "-abc123"), "another file's");
-    std::filesystem::create_symlink(folder / "other.txt", folder / ("out.txt.partial-" + dead + "-link00"));
+    const std::string ours = std::string(kPartialMarker) + dead;
+    test::write_bytes(folder / ("out.txt" + ours + "-abc123"), "killed midway");
+    test::write_bytes(folder / ("other.txt" + ours + "-abc123"), "another file's");
+    std::filesystem::create_symlink(folder / "other.txt", folder / ("out.txt" + ours + "-link00"));
+    std::filesystem::create_directories(folder / ("out.txt" + ours + "-drafts"));  // a folder: not what a PartialFile makes
+    test::write_bytes(folder / ("out.txt.partial-" + dead + "-abc123"), "a user's, of a name like ours");
     const OwnedTemp live = create_owned_file(folder, "out.txt", kPartialMarker);  // a writer at work
     PartialFile<std::runtime_error> out(folder / "out.txt");
     out.write("new");
     out.commit();
-    EXPECT_EQ(names_in(folder), (std::set<std::string>{"out.txt", "other.txt.partial-" + dead + "-abc123", "out.txt.partial-" + dead + "-link00",
+    EXPECT_EQ(names_in(folder), (std::set<std::string>{"out.txt", "other.txt" + ours + "-abc123", "out.txt" + ours + "-link00",
+                                                       "out.txt" + ours + "-drafts", "out.txt.partial-" + dead + "-abc123",
                                                        live.path.filename().string()}));
     ::close(live.fd);
     std::filesystem::remove_all(folder);
