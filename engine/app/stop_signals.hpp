@@ -8,10 +8,12 @@
 //
 // The one hand-off, and the project's one piece of global state (STYLE.md: a signal handler can
 // reach nothing else): the handler stores the signal's number in a lock-free std::atomic<int>, an
-// async-signal-safe store, and does nothing more. Any thread may take the signal.
+// async-signal-safe store, and puts both signals back to their default (sigaction, also
+// async-signal-safe). Any thread may take the signal.
 //
-// A second signal is not caught (SA_RESETHAND): if stopping in order hangs, a second Ctrl-C or
-// SIGTERM ends the process at once, as it would have without us. Handlers are installed with
+// A second signal is not caught: if stopping in order hangs, a second Ctrl-C or SIGTERM (either
+// after either) ends the process at once, as it would have without us. A signal ignored when we
+// come (nohup, a script's background job) is left ignored. Handlers are installed with
 // SA_RESTART, so the rest of the program (file reads, the network) never sees EINTR because of them.
 #pragma once
 

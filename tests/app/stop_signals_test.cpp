@@ -29,11 +29,25 @@ TEST(StopSignals, ASignalIsARequestAndTheFirstOneIsKept)
     EXPECT_EQ(stop.requested(), SIGTERM);
     EXPECT_EQ(StopSignals::exit_code(stop.requested()), 143);
     EXPECT_STREQ(StopSignals::name(stop.requested()), "SIGTERM");
-    // caught once: a second SIGTERM would end the process (not raised here)
+    // caught once: a second signal of either kind would end the process (not raised here)
     EXPECT_EQ(handler_of(SIGTERM), SIG_DFL);
-    ASSERT_EQ(std::raise(SIGINT), 0);  // SIGINT's handler is still ours; the first request stays
-    EXPECT_EQ(stop.requested(), SIGTERM);
+    EXPECT_EQ(handler_of(SIGINT), SIG_DFL);
     EXPECT_EQ(StopSignals::exit_code(SIGINT), 130);
+}
+
+// A signal ignored when the command starts (nohup, a script's background job) stays ignored.
+TEST(StopSignals, LeavesAnIgnoredSignalIgnored)
+{
+    std::signal(SIGTERM, SIG_IGN);
+    {
+        const StopSignals stop;
+        EXPECT_EQ(handler_of(SIGTERM), SIG_IGN);
+        EXPECT_NE(handler_of(SIGINT), SIG_IGN);
+        ASSERT_EQ(std::raise(SIGTERM), 0);
+        EXPECT_EQ(stop.requested(), 0);
+    }
+    EXPECT_EQ(handler_of(SIGTERM), SIG_IGN);
+    std::signal(SIGTERM, SIG_DFL);
 }
 
 TEST(StopSignals, PutsBackTheHandlersItReplacedAndStartsWithoutARequest)
