@@ -38,14 +38,18 @@ Capabilities touch_family()
     return c;
 }
 
-// every error hdGetError has queued, oldest first; the first is returned, the rest dropped
+// a device or communication fault: the arm is gone until a frame goes through again
+bool is_fault(HDerror code) { return code >= HD_DEVICE_FAULT && code < HD_ILLEGAL_BEGIN; }
+
+// every error hdGetError has queued, oldest first: the first fault among them (a force error queued
+// before it must not hide it), else the first error; the rest dropped
 HDErrorInfo pop_errors(const HdApi& api)
 {
     HDErrorInfo first{HD_SUCCESS, 0, HD_INVALID_HANDLE};
     for (int i = 0; i < 16; ++i) {
         const HDErrorInfo e = api.hdGetError();
         if (e.errorCode == HD_SUCCESS) break;
-        if (first.errorCode == HD_SUCCESS) first = e;
+        if (first.errorCode == HD_SUCCESS || (is_fault(e.errorCode) && !is_fault(first.errorCode))) first = e;
     }
     return first;
 }
@@ -231,7 +235,7 @@ HDCallbackCode OpenHapticsDevice::servo_frame(bool zero_only) noexcept
     // device and communication faults: the arm is gone until a frame goes through again; any other
     // error (a force error: motors too warm, a velocity or impulse over the arm's limit, which the
     // arm answers by cutting its force itself; a frame or scheduler error) is counted and said
-    const bool fault = e.errorCode >= HD_DEVICE_FAULT && e.errorCode < HD_ILLEGAL_BEGIN;
+    const bool fault = is_fault(e.errorCode);
     if (fault) {
         fault_internal_.store(e.internalErrorCode, std::memory_order_relaxed);
         fault_code_.store(e.errorCode, std::memory_order_relaxed);

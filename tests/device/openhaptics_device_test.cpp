@@ -215,6 +215,17 @@ TEST_F(OpenHapticsDeviceTest, AFaultIsSaidWithTheHdErrorTheArmGoesLimpAndComesBa
     EXPECT_EQ(events[0].kind, DeviceEvent::Kind::note);
     EXPECT_NE(events[0].message.find("HD_EXCEEDED_MAX_VELOCITY (0x0203): the arm cut its force itself"), std::string::npos)
         << events[0].message;
+
+    // a force error queued before a fault in the same frame does not hide the fault
+    fake_.queue_error(HD_EXCEEDED_MAX_VELOCITY);
+    fake_.queue_error(HD_COMM_ERROR);
+    arm.write_force(Eigen::Vector3d(0, 0.5, 0));
+    fake_.servo(1);
+    EXPECT_FALSE(arm.read(0.004, s)) << "a frame with a communication error was taken as the handle's";
+    arm.write_force(Eigen::Vector3d(0, 0.5, 0));
+    fake_.servo(1);
+    EXPECT_TRUE(arm.read(0.005, s));
+    EXPECT_EQ(sent(), Eigen::Vector3d::Zero()) << "a force was sent on the frame after a fault";
 }
 
 TEST_F(OpenHapticsDeviceTest, StoppingSendsZeroForceFirstThenStopsTheServoAndDisablesTheArm)
