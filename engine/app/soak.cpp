@@ -211,11 +211,10 @@ SoakResult run_soak_session(const SoakOptions& o)
             presenter.render(frame.passes(), &image);
             ++r.frames;
         }
-        const CyclictestResult floor = cyclictest.finish();
-        r.cyclictest_max_ms = floor.max_ms;
-        r.cyclictest_note = floor.note;
         r.haptic_memory_locked = loop.memory_locked();
         r.haptic_cpu = loop.cpu();
+        // the session first (the device's force to zero before anything else), then cyclictest, so
+        // its spell covers the loop's to the end
         scene.session.stop();
         const physics::RunnerStats ps = scene.session.physics_stats();
         r.physics_steps = ps.steps;
@@ -228,6 +227,9 @@ SoakResult run_soak_session(const SoakOptions& o)
         r.haptic_missed = h.missed_deadlines;
         r.haptic_late_max_ms = h.window_max_late_ms;
         r.page_faults = h.page_faults;
+        const CyclictestResult floor = cyclictest.finish();
+        r.cyclictest_max_ms = floor.max_ms;
+        r.cyclictest_note = floor.note;
         r.host_steal_s = r.samples.back().host_steal_s;
         r.haptic_steal_free_periods = steal_free.periods;
         r.haptic_steal_free_p99_ms = steal_free.error_quantile_ms(0.99);

@@ -5,6 +5,7 @@
 #include "haptics/realtime_thread.hpp"
 
 #include <atomic>
+#include <cstdio>
 #include <chrono>
 #include <thread>
 
@@ -95,7 +96,7 @@ struct TouchingDevice : device::NullDevice {
     }
 };
 
-PeriodStats run_loop_for_a_second(const std::shared_ptr<TouchingDevice>& device, std::string& note)
+PeriodStats run_loop_for_a_second(const std::shared_ptr<TouchingDevice>& device, std::string& note, bool& locked)
 {
     physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
     const ProbeMapping mapping(test::leg());
@@ -103,6 +104,7 @@ PeriodStats run_loop_for_a_second(const std::shared_ptr<TouchingDevice>& device,
     physics.start();
     loop.start();
     note = loop.priority_note();
+    locked = loop.memory_locked();
     while (loop.ticks() < 1000) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     loop.stop();
     physics.stop();
@@ -112,16 +114,21 @@ PeriodStats run_loop_for_a_second(const std::shared_ptr<TouchingDevice>& device,
 TEST(RealtimeThread, TheLoopTakesNoPageFaultAfterItsStartAndCountsAnyItDoes)
 {
     std::string note;
+    bool locked = false;
     const auto quiet = std::make_shared<TouchingDevice>();
-    const PeriodStats calm = run_loop_for_a_second(quiet, note);
+    const PeriodStats calm = run_loop_for_a_second(quiet, note, locked);
     EXPECT_GE(calm.periods, 999);
-    if (!kSanitized) {
+    // the claim holds where the memory is locked (as root, as CI runs); unlocked, the kernel may
+    // reclaim or move a page under the loop, and the count is only reported
+    if (!kSanitized && locked) {
         EXPECT_EQ(calm.page_faults, 0) << "the loop faulted after its start (" << (note.empty() ? "real time" : note) << ")";
+    } else {
+        std::printf("memory not locked (%s): %lld page faults after the start, not judged\n", note.c_str(), (long long)calm.page_faults);
     }
 
     const auto touching = std::make_shared<TouchingDevice>();
     touching->touch = true;
-    const PeriodStats touched = run_loop_for_a_second(touching, note);
+    const PeriodStats touched = run_loop_for_a_second(touching, note, locked);
     ASSERT_GE(touching->measured.load(), std::int64_t(kFreshPages)) << "the driver's touch was not made, or faulted nothing";
     EXPECT_GE(touched.page_faults, touching->measured.load()) << "faults in the loop's thread went uncounted";
 }
