@@ -94,7 +94,7 @@ TEST(MetaImage, RoundTripsEveryVoxelTypeRawAndCompressed)
             const Volume v = oblique_volume(type);
             const auto path = temp("oblique.mha");
             write_metaimage_volume(path, v, compressed);
-            EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+            EXPECT_FALSE(test::partial_left_beside(path));
             const std::string bytes = read_bytes(path);
             EXPECT_EQ(bytes.rfind("ObjectType = Image\nNDims = 3\n", 0), 0u);
             EXPECT_NE(bytes.find(compressed ? "CompressedData = True\nCompressedDataSize = " : "CompressedData = False\n"), std::string::npos);
@@ -350,7 +350,7 @@ TEST(MetaImage, FailedWriteLeavesNoFile)
     }
     for (const auto& p : {path, detached, temp("failed.raw"), temp("failed.zraw")}) {
         EXPECT_FALSE(std::filesystem::exists(p)) << p;
-        EXPECT_FALSE(std::filesystem::exists(p.string() + ".partial")) << p;
+        EXPECT_FALSE(test::partial_left_beside(p)) << p;
     }
     const auto nowhere = std::filesystem::path("/nonexistent-echosim-folder/x.mha");
     EXPECT_THROW(write_metaimage_volume(nowhere, v, false), MetaImageError);

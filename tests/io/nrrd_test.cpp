@@ -88,7 +88,7 @@ TEST(Nrrd, RoundTripsRawEveryVoxelAndTheGeometry)
     const Volume v = oblique_volume(VoxelType::uint16);  // voxel i holds i * 997 + 3
     const auto path = temp("raw.nrrd");
     write_nrrd(path, v, false);
-    EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+    EXPECT_FALSE(test::partial_left_beside(path));
     const std::string bytes = read_bytes(path);
     EXPECT_EQ(bytes.rfind("NRRD0004\n", 0), 0u);
     EXPECT_NE(bytes.find("space: left-posterior-superior\n"), std::string::npos);
@@ -389,7 +389,7 @@ TEST(Nrrd, FailedWriteLeavesNoFile)
         EXPECT_THROW(write_nrrd(path, keyed, false), NrrdError) << key;
     }
     EXPECT_FALSE(std::filesystem::exists(path));
-    EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+    EXPECT_FALSE(test::partial_left_beside(path));
 
     v.origin.y = 0;
     const auto nowhere = std::filesystem::path("/nonexistent-echosim-folder/x.nrrd");

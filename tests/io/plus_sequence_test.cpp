@@ -143,7 +143,7 @@ TEST(PlusSequence, RoundTripsRawEveryPixelAndPose)
     const Sweep s = make_sweep(7, 5, 4);
     const auto path = temp("raw.mha");
     write_plus_mha(path, s, false);
-    EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+    EXPECT_FALSE(test::partial_left_beside(path));
 
     const std::string bytes = read_bytes(path);
     const std::string head = "ObjectType = Image\nNDims = 3\nAnatomicalOrientation = RAI\nBinaryData = True\n"
@@ -463,7 +463,7 @@ TEST(PlusSequence, FailedWriteLeavesNoFile)
     s = make_sweep(4, 3, 0);
     EXPECT_THROW(write_plus_mha(path, s, false), PlusSequenceError);
     EXPECT_FALSE(std::filesystem::exists(path));
-    EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+    EXPECT_FALSE(test::partial_left_beside(path));
 
     const auto nowhere = std::filesystem::path("/nonexistent-echosim-folder/x.mha");
     EXPECT_THROW(write_plus_mha(nowhere, make_sweep(4, 3, 3), false), PlusSequenceError);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.hpp"
+
 namespace echosim::io {
 namespace {
 
@@ -26,7 +28,7 @@ TEST(Png, RoundTripsEveryByte)
     EXPECT_EQ(back.width, 7u);
     EXPECT_EQ(back.height, 5u);
     EXPECT_EQ(back.pixels, img.pixels);
-    EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+    EXPECT_FALSE(test::partial_left_beside(path));
     std::filesystem::remove(path);
 }
 
