@@ -10,7 +10,6 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include "io/partial_file.hpp"
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -19,15 +18,6 @@ namespace echosim::test {
 inline std::filesystem::path temp_path(const std::string& prefix, const std::string& name)
 {
     return std::filesystem::temp_directory_path() / ("echosim_" + prefix + "_" + std::to_string(::getpid()) + "_" + name);
-}
-
-// Whether a partial file of `path` (io/partial_file.hpp: PATH.echosim-partial-PID-XXXXXX) lies beside it.
-inline bool partial_left_beside(const std::filesystem::path& path)
-{
-    const std::string head = path.filename().string() + io::kPartialMarker;
-    for (const auto& e : std::filesystem::directory_iterator(path.has_parent_path() ? path.parent_path() : "."))
-        if (e.path().filename().string().rfind(head, 0) == 0) return true;
-    return false;
 }
 
 inline std::string read_bytes(const std::filesystem::path& path)

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include "io/partial_left.hpp"
 #include "test_files.hpp"
 #include "volume_samples.hpp"
 

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/partial_left.hpp"
 #include "test_files.hpp"
 #include "volume_samples.hpp"
 

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/partial_left.hpp"
 #include "test_files.hpp"
 #include <zlib.h>
 

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/partial_left.hpp"
 #include "test_files.hpp"
 
 namespace echosim::io {
