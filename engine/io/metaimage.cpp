@@ -261,9 +261,6 @@ std::vector<std::uint8_t> inflate_metaimage_data(const std::filesystem::path& pa
         if (e.kind() == ZlibError::Kind::corrupt) fail_compressed(corrupt + e.what());
         fail_compressed(e.what());
     }
-    if (data.beyond > 0)
-        fail_compressed("the compressed data do not end after the " + sizes_give + ": they hold " + std::to_string(data.beyond) +
-                        " bytes more");
     return std::move(data.data);
 }
 

@@ -72,7 +72,7 @@ std::string canonical_field(std::string name)
 std::vector<std::uint8_t> inflate_data(std::istream& in, const NrrdHeader& header, std::uint64_t bytes)
 {
     try {
-        // what the stream holds past the voxels is dropped
+        // a stream that holds more than the voxels is refused (ZlibError::Kind::too_long)
         return inflate_exactly(in, bytes, text::bytes_left(in)).data;
     } catch (const ZlibError& e) {
         const std::string sizes_say = " bytes, sizes say " + std::to_string(bytes);

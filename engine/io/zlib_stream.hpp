@@ -51,8 +51,7 @@ private:
 };
 
 struct Inflated {
-    std::vector<std::uint8_t> data;  // exactly the bytes wanted
-    std::uint64_t beyond = 0;        // always 0: a stream holding more is refused (too_long); kept for its callers
+    std::vector<std::uint8_t> data;  // exactly the bytes wanted (a stream holding more is refused: too_long)
 };
 
 // deflate's largest ratio of inflated to compressed bytes (one literal, then matches of 258 bytes at
