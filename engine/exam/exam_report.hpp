@@ -80,6 +80,10 @@ struct ExamReport {
     // collapsed; a two-point exam that collapsed both cannot exclude an isolated femoral clot
     std::string conclusion;
     bool dvt_present = false;     // the truth
+    // the case's force bands (ScoringBands), drawn on the report's force trace: the adequate band
+    // from adequate_force_N up to excessive_force_N [N]; 0: not known, not drawn
+    double adequate_force_N = 0;
+    double excessive_force_N = 0;
     // the force over time, for the trace: every sample (t [s], force [N])
     std::vector<std::pair<double, double>> force_trace;
 };
