@@ -1,0 +1,118 @@
+// The exam's scorer (DESIGN.md §1, "trainer"; issue 31 item 4): it watches the session step by
+// step and judges each station of the case's protocol on the simulation's truth (STYLE.md 16), never
+// on the image alone:
+//   - reached: the vein's axis crosses the image plane within ScoringBands::reach_mm of the beam's
+//     centre line, within kAlongToleranceMm of the station along the vein, the plane within
+//     transverse_deg of transverse, the probe in contact;
+//   - pressed: the peak force while there, against the case's adequate and excessive bands, and the
+//     session's echo frame at that deepest press, kept to be imaged afterwards;
+//   - compression: the vein's interior (lumen and thrombus) and the artery's lumen in the deformed
+//     labels at the deepest press against the same plane at rest (measure_compression), so the walls
+//     meeting is measured, not guessed;
+//   - the trainee's call (compressible or not), against the truth under the station.
+// Errors flagged: a skipped station, too little pressure, the wrong vessel pressed (the artery or
+// the great saphenous vein under the beam instead of the vein), an oblique plane, excessive force, a
+// mimic called a clot, a wrong call. Motion: time, the probe's path, its angle from transverse.
+//
+// Threads: one (the runner's driver thread, or a test). No allocation per step beyond the force
+// trace's growth.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "echo/echo_frame.hpp"
+#include "exam/exam_report.hpp"
+#include "exam/scenario.hpp"
+#include "exam/station_truth.hpp"
+
+namespace echosim::exam {
+
+// How far along the vein from a station the image plane may cross it and still be at that station
+// [mm]: half the extended protocol's 2 cm spacing, so neighbouring stations never overlap.
+inline constexpr double kAlongToleranceMm = 10.0;
+// The probe touches the skin above this force [N].
+inline constexpr double kContactForceN = 0.2;
+// A press counts for the wrong-vessel and oblique checks from this fraction of the adequate force.
+inline constexpr double kPressingFraction = 0.5;
+
+// One step as the scorer sees it: the session's view, reduced to plain values.
+struct ExamSample {
+    double time_s = 0;
+    Pose face;                  // the probe's face where it is (pressed)
+    double force_N = 0;         // the tissue's push on the probe
+    const echo::EchoFrame* echo = nullptr;  // the image's input at this step (kept at the deepest press)
+};
+
+// What the labels say at one station's deepest press (measure_compression).
+struct Compression {
+    double vein_rest_mm2 = 0, vein_pressed_mm2 = 0;
+    double artery_rest_mm2 = 0, artery_pressed_mm2 = 0;
+};
+
+// The tissue codes of an image made from `frame` (the CPU twin's labels, row-major columns x rows).
+using LabelImager = std::function<std::vector<std::uint8_t>(const echo::EchoFrame& frame)>;
+
+// The vein's interior and the artery's lumen in the labels imaged at `pressed` and at the same
+// plane unpressed (its columns emptied), counted within the vessel's own columns (its projection
+// +- 1.5 radii across the array), in mm^2 of the image plane.
+Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
+                                const LabelImager& labels);
+
+class Scorer {
+public:
+    Scorer(const Scenario& scenario, std::vector<StationTruth> truth);
+
+    void observe(const ExamSample& sample);
+    // The trainee's call, for the station examined last (the one reached most recently).
+    void call(double time_s, Call c);
+
+    // Index of the station the probe is at now (reached), if any.
+    std::optional<std::size_t> current_station() const { return current_; }
+    const std::vector<StationTruth>& truth() const { return truth_; }
+    // The echo frame at each station's deepest press (none: never pressed there).
+    const std::optional<echo::EchoFrame>& deepest_frame(std::size_t station) const { return stations_[station].deepest; }
+
+    // The report, given each station's compression (none: not measured, e.g. never pressed) and its
+    // image's file name relative to the report ("" for none).
+    ExamReport finish(const std::vector<std::optional<Compression>>& compression, const std::vector<std::string>& images) const;
+
+private:
+    struct Geometry {
+        double lateral_mm = 1e9;  // the axis's crossing of the plane from the beam's centre line, along the array
+        double along_mm = 1e9;    // the face's foot on the vessel's axis from the station, along it
+        double angle_deg = 90;    // the plane's normal from the vessel's direction
+        bool crosses = false;     // the axis crosses the plane within the image's depth
+    };
+    static Geometry geometry(const VesselAxis& axis, const Pose& face);
+
+    struct Tracked {
+        bool reached = false;
+        double reached_at_s = -1;
+        double peak_force_N = 0;
+        double peak_at_s = -1;
+        Geometry at_peak;
+        std::optional<echo::EchoFrame> deepest;
+        bool oblique = false;
+        double oblique_at_s = -1, oblique_angle_deg = 0;
+        bool wrong_vessel = false;
+        double wrong_vessel_at_s = -1;
+        std::string wrong_vessel_which;
+        Call call = Call::none;
+        double call_at_s = -1;
+    };
+
+    Scenario scenario_;
+    std::vector<StationTruth> truth_;
+    std::vector<Tracked> stations_;
+    std::optional<std::size_t> current_, last_examined_;
+    bool have_last_ = false;
+    glm::dvec3 last_position_{0.0};
+    double path_mm_ = 0, start_s_ = -1, end_s_ = 0;
+    double angle_sum_ = 0, angle_max_ = 0;
+    long long angle_samples_ = 0;
+    std::vector<std::pair<double, double>> force_trace_;
+};
+
+}  // namespace echosim::exam
