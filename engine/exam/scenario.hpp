@@ -4,6 +4,7 @@
 // in JSON against assets/cases/scenario.schema.json; `echosim case validate F` checks it.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -40,6 +41,7 @@ struct Patient {
 };
 
 enum class Imaging { interpolative, generative };
+const char* imaging_name(Imaging i);  // "interpolative", "generative"
 
 struct Scenario {
     std::string id;            // file-name-like, unique among the shipped cases: "healthy", "fv-isolated-acute"
@@ -67,7 +69,11 @@ Scenario read_scenario(const std::filesystem::path& file);
 Scenario parse_scenario(const std::string& json_text, const std::filesystem::path& file_for_messages);
 
 // The shipped cases (assets/cases/*.json, by id), and one drawn from them by `seed` (--case random).
+// A shipped case's file is named by its id (ID.json). shipped_cases() lists them sorted by file name.
 std::vector<std::filesystem::path> shipped_cases();
 std::filesystem::path shipped_case(const std::string& id);  // throws naming the id and listing the ids
+// One of shipped_cases(), drawn by `seed`: the same seed draws the same case; seeds spread evenly
+// over the cases (a trainee given a fresh seed cannot tell which case comes).
+std::filesystem::path random_case(std::uint64_t seed);
 
 }  // namespace echosim::exam
