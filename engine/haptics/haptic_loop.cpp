@@ -11,6 +11,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 
 #include "haptics/realtime_thread.hpp"
 
@@ -56,8 +57,10 @@ HapticLoop::~HapticLoop() { stop(); }
 
 void HapticLoop::tick(double t_s)
 {
+    if (stamp_parts_) stamps_[0] = now_ns();
     HapticSample& s = now_;
     device_->read(t_s, s.device);
+    if (stamp_parts_) stamps_[1] = now_ns();
     s.face = mapping_.face(s.device);
     // velocity from the poses, low-passed: a device that reports slower than the loop moves in steps
     const double dt = have_last_ ? t_s - last_t_ : 0.0;
@@ -91,7 +94,9 @@ void HapticLoop::tick(double t_s)
     }
     s.physics_force_N = model.in_contact ? model.force : 0.0;
     s.physics_step = model.step;
+    if (stamp_parts_) stamps_[2] = now_ns();
     device_->write_force(mapping_.to_device(s.force.world_N, s.device.control));
+    if (stamp_parts_) stamps_[3] = now_ns();
 
     physics::ProbeCommand c;
     c.active = true;
@@ -104,6 +109,7 @@ void HapticLoop::tick(double t_s)
     s.time_s = t_s;
     out_.write_slot() = s;
     out_.publish();
+    if (stamp_parts_) stamps_[4] = now_ns();
 }
 
 void HapticLoop::start()
@@ -174,9 +180,13 @@ void HapticLoop::run()
     stats_out_.write_slot() = stats_;
     out_.write_slot() = now_;
     const std::int64_t faults_at_start = thread_page_faults();
-    const auto update_faults = [&] {
-        if (faults_at_start >= 0) stats_.page_faults = thread_page_faults() - faults_at_start;
-    };
+    // the thread's context switches and CPU time, read at every wake-up (one getrusage a tick): its
+    // page faults from there, and the worst tick's (PeriodStats::worst) from the difference
+    rusage usage_before{};
+    bool have_usage = getrusage(RUSAGE_THREAD, &usage_before) == 0;
+    float late_before[WorstTick::kHistory] = {};  // the latest ticks' lateness [us], a ring
+    int ring_next = 0;
+    stamp_parts_ = true;
     started_.store(1, std::memory_order_release);
 
     const std::int64_t period = std::int64_t(std::llround(1e9 / options_.rate_hz));
@@ -184,23 +194,74 @@ void HapticLoop::run()
     const double nominal_ms = double(period) * 1e-6;
     const std::int64_t origin = now_ns();
     std::int64_t due = origin + period, last_wake = origin;
+    std::int64_t ready = origin;   // the end of the last tick's work (and bookkeeping)
+    int cpu_ready = sched_getcpu();
     std::int64_t n = 0;
     std::uint32_t window = window_.load(std::memory_order_relaxed);
     while (running_.load(std::memory_order_relaxed)) {
-        if (due - spin > now_ns()) sleep_until_ns(due - spin);
-        std::int64_t wake = now_ns();
+        bool slept = false;
+        std::int64_t woke = ready;  // from the sleep, where there was one
+        if (due - spin > ready) {
+            sleep_until_ns(due - spin);
+            slept = true;
+            woke = now_ns();
+        }
+        std::int64_t wake = woke;
         while (wake < due) {
             cpu_relax();
             wake = now_ns();
         }
+        const int cpu_wake = sched_getcpu();
+        rusage usage{};
+        const bool usage_now = getrusage(RUSAGE_THREAD, &usage) == 0;
         stats_.add_period(double(wake - last_wake) * 1e-6, nominal_ms);
         const double late_ms = double(wake - due) * 1e-6;
         stats_.max_late_ms = std::max(stats_.max_late_ms, late_ms);
         if (const std::uint32_t w = window_.load(std::memory_order_relaxed); w != window) {
             window = w;
             stats_.window_max_late_ms = 0;
+            stats_.worst = WorstTick{};
         }
         stats_.window_max_late_ms = std::max(stats_.window_max_late_ms, late_ms);
+        if (late_ms > stats_.worst.late_ms) {
+            WorstTick& w = stats_.worst;
+            w.late_ms = late_ms;
+            w.tick = ticks_.load(std::memory_order_relaxed) + 1;
+            w.at_s = double(due - origin) * 1e-9;
+            w.monotonic_s = double(wake) * 1e-9;
+            w.spell_ms = double(wake - last_wake) * 1e-6;
+            const bool after_a_tick = n > 0;  // the stamps are the tick before's
+            w.before_us = after_a_tick ? double(stamps_[0] - last_wake) * 1e-3 : 0.0;
+            w.read_us = after_a_tick ? double(stamps_[1] - stamps_[0]) * 1e-3 : 0.0;
+            w.force_us = after_a_tick ? double(stamps_[2] - stamps_[1]) * 1e-3 : 0.0;
+            w.write_us = after_a_tick ? double(stamps_[3] - stamps_[2]) * 1e-3 : 0.0;
+            w.handoff_us = after_a_tick ? double(stamps_[4] - stamps_[3]) * 1e-3 : 0.0;
+            w.after_us = after_a_tick ? double(ready - stamps_[4]) * 1e-3 : 0.0;
+            w.slept = slept;
+            w.sleep_late_us = slept ? double(woke - (due - spin)) * 1e-3 : 0.0;
+            w.spin_us = double(wake - woke) * 1e-3;
+            w.cpu_before = cpu_ready;
+            w.cpu_after = cpu_wake;
+            if (have_usage && usage_now) {
+                w.voluntary_switches = usage.ru_nvcsw - usage_before.ru_nvcsw;
+                w.involuntary_switches = usage.ru_nivcsw - usage_before.ru_nivcsw;
+                const auto us = [](const rusage& u) {
+                    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e6 + double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+                };
+                w.ran_ms = (us(usage) - us(usage_before)) * 1e-3;
+            } else {
+                w.voluntary_switches = w.involuntary_switches = -1;
+                w.ran_ms = -1;
+            }
+            for (int i = 0; i < WorstTick::kHistory; ++i) w.late_before_us[i] = late_before[(ring_next + i) % WorstTick::kHistory];
+        }
+        late_before[ring_next] = float(late_ms * 1000.0);
+        ring_next = (ring_next + 1) % WorstTick::kHistory;
+        if (usage_now) {
+            usage_before = usage;
+            have_usage = true;
+            if (faults_at_start >= 0) stats_.page_faults = std::int64_t(usage.ru_minflt) + std::int64_t(usage.ru_majflt) - faults_at_start;
+        }
         last_wake = wake;
         if (wake > due + period) {
             // woke after the next tick was due: count it, and do not run a burst of ticks to catch up
@@ -208,16 +269,18 @@ void HapticLoop::run()
             due = wake;
         }
         tick(double(wake - origin) * 1e-9);
-        const double work_us = double(now_ns() - wake) * 1e-3;
+        const double work_us = double(stamps_[4] - wake) * 1e-3;
         if (work_us > stats_.max_tick_us) stats_.max_tick_us = work_us;
         if (++n % 100 == 0) {
-            update_faults();
             stats_out_.write_slot() = stats_;
             stats_out_.publish();
         }
         due += period;
+        ready = now_ns();
+        cpu_ready = sched_getcpu();
     }
-    update_faults();
+    stamp_parts_ = false;
+    if (const std::int64_t faults = thread_page_faults(); faults >= 0 && faults_at_start >= 0) stats_.page_faults = faults - faults_at_start;
     stats_out_.write_slot() = stats_;
     stats_out_.publish();
 }

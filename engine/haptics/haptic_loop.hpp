@@ -112,6 +112,11 @@ private:
     bool have_model_ = false;
     RefreshBlend blend_;
     PeriodStats stats_;
+    // the running loop's clock readings in the tick under way (CLOCK_MONOTONIC [ns]): its start, after
+    // the device's read, the force, the device's write, the hand-offs (PeriodStats::worst); lock-step
+    // ticks take none
+    bool stamp_parts_ = false;
+    std::int64_t stamps_[5] = {};
     // hand-offs
     TripleBuffer<HapticSample> out_;
     TripleBuffer<PeriodStats> stats_out_;  // published every 100 ticks, for stats() while running

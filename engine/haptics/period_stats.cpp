@@ -37,6 +37,7 @@ void PeriodStats::merge(const PeriodStats& other)
     max_late_ms = std::max(max_late_ms, other.max_late_ms);
     window_max_late_ms = std::max(window_max_late_ms, other.window_max_late_ms);
     page_faults += other.page_faults;
+    if (other.worst.late_ms > worst.late_ms) worst = other.worst;
 }
 
 double PeriodStats::error_quantile_ms(double q) const

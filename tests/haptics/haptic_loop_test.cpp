@@ -121,6 +121,51 @@ TEST(HapticLoop, KeepsTheCpusAwakeWhileRunningOrSaysWhyNot)
     EXPECT_FALSE(loop.cpus_awake()) << "the request outlived the loop";
 }
 
+// The loop's latest tick is kept taken apart (PeriodStats::worst), so a stall names its part: here a
+// driver whose read blocks once for 150 ms (far longer than anything this machine does to the loop
+// otherwise) is named as the tick before the latest start, and the ticks before it are kept. No
+// timing is judged: the stall's own length is a lower bound on what must be seen.
+TEST(HapticLoop, ItsLatestTickIsKeptTakenApartAndNamesAStalledRead)
+{
+    struct StallingDevice : device::NullDevice {
+        std::atomic<int> reads{0};
+        std::atomic<bool> stalled{false};
+        bool read(double t_s, device::DeviceSample& out) noexcept override
+        {
+            if (++reads == 300) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(150));
+                stalled = true;
+            }
+            return NullDevice::read(t_s, out);
+        }
+    };
+    physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
+    const ProbeMapping mapping(test::leg());
+    const auto device = std::make_shared<StallingDevice>();
+    HapticLoop loop(physics, device, mapping);  // real time where permitted
+    loop.start();
+    while (!device->stalled || loop.ticks() < 500) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    loop.stop();
+    const PeriodStats s = loop.stats();
+    const WorstTick& w = s.worst;
+    EXPECT_NEAR(w.late_ms, s.window_max_late_ms, 1e-9) << "the worst tick is not the latest start";
+    EXPECT_GE(w.late_ms, 140.0);
+    EXPECT_EQ(w.tick, 301) << "the tick after the stalled read";
+    EXPECT_GE(w.read_us, 150'000.0) << "the stall not put on the device's read";
+    EXPECT_LT(w.force_us + w.write_us + w.handoff_us, w.read_us);
+    EXPECT_FALSE(w.slept) << "a loop 150 ms behind slept";
+    EXPECT_GE(w.spell_ms, 150.0);
+    EXPECT_GE(w.voluntary_switches, 1) << "the read slept: the thread was switched out";
+    EXPECT_GE(w.ran_ms, 0.0);
+    EXPECT_LT(w.ran_ms, w.spell_ms) << "the thread ran through a sleep";
+    EXPECT_GE(w.cpu_before, 0);
+    EXPECT_GE(w.cpu_after, 0);
+    EXPECT_GT(w.at_s, 0.25);
+    EXPECT_GT(w.monotonic_s, 0.0);
+    // the ticks before it ran on time, give or take this machine: none of them held the stall
+    for (float late : w.late_before_us) EXPECT_LT(late, 0.5 * w.late_ms * 1000.0);
+}
+
 TEST(HapticLoop, ATickAllocatesNothing)
 {
     physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
@@ -133,6 +178,24 @@ TEST(HapticLoop, ATickAllocatesNothing)
     const long before = test::allocations();
     for (int i = 301; i <= 1300; ++i) loop.tick(i * 1e-3);
     EXPECT_EQ(test::allocations() - before, 0);
+}
+
+// The same for the running loop's own thread: its waits, its bookkeeping and the worst tick's record
+// (getrusage, sched_getcpu, the clock) allocate nothing either, over a thousand ticks.
+TEST(HapticLoop, TheRunningLoopAllocatesNothing)
+{
+    physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});  // not stepping: its thread would count
+    const ProbeMapping mapping(test::leg());
+    HapticLoop loop(physics, std::make_shared<device::NullDevice>(), mapping);
+    loop.start();
+    while (loop.ticks() < 50) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const long before = test::allocations();
+    const std::int64_t ticks = loop.ticks();
+    while (loop.ticks() < ticks + 1000) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const long made = test::allocations() - before;
+    loop.stop();
+    EXPECT_EQ(made, 0);
+    EXPECT_GE(loop.stats().worst.late_ms, 0.0) << "no worst tick kept";
 }
 
 TEST(HapticLoop, ADeviceThatGoesAwayOrSendsNaNDoesNotStopIt)
