@@ -3,17 +3,21 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
-#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <thread>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_access.hpp>
+#include <glm/matrix.hpp>
 
+#include "core/fork_join.hpp"
 #include "echo/log_compress.hpp"
+#include "echo/reconstruct.hpp"
+#include "echo/sweep.hpp"
 
 namespace echosim::echo {
 namespace {
-
-using cplx = std::complex<float>;
 
 // Acoustic properties by tissue: scattering strength (relative), impedance [MRayl], attenuation
 // [dB/cm/MHz]. Blood barely scatters (anechoic lumen); an acute thrombus is hypo-echoic, a chronic
@@ -41,46 +45,7 @@ constexpr std::array<Acoustics, kTissueCount> kAcoustics = {{
 }};
 constexpr float kSpecular = 40.0f;  // specular echo relative to a unit scatterer (about 20 dB over speckle)
 constexpr double kLattice = 0.1;    // scatterer lattice [mm]
-
-std::uint64_t mix(std::uint64_t x)
-{
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
-std::uint64_t lattice_key(const glm::dvec3& p, double cell_x, double cell_y, double cell_z, std::uint64_t salt)
-{
-    const auto i = std::int64_t(std::floor(p.x / cell_x)), j = std::int64_t(std::floor(p.y / cell_y)),
-               k = std::int64_t(std::floor(p.z / cell_z));
-    return mix(std::uint64_t(i) * 0x100000001b3ull ^ mix(std::uint64_t(j) + salt) ^ mix(std::uint64_t(k) * 31 + 7));
-}
-
-// a complex Gaussian scatterer fixed to the body at p
-cplx scatterer(const glm::dvec3& p)
-{
-    const std::uint64_t h = lattice_key(p, kLattice, kLattice, kLattice, 17);
-    const double u1 = (double(h >> 11) + 0.5) / 9007199254740992.0;
-    const double u2 = double(mix(h) >> 11) / 9007199254740992.0;
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    return {float(r * std::cos(2 * std::numbers::pi * u2)), float(r * std::sin(2 * std::numbers::pi * u2))};
-}
-
-// texture: muscle fibres run along the limb (z), so their strength varies slowly along z and
-// quickly across; fat carries thin bright septa
-float texture(Tissue t, const glm::dvec3& p)
-{
-    if (t == Tissue::muscle) {
-        const double v = double(lattice_key(p, 0.6, 0.6, 12.0, 3) >> 11) / 9007199254740992.0;
-        return float(0.55 + 0.9 * v);
-    }
-    if (t == Tissue::fat) {
-        const double v = double(lattice_key(p, 1.5, 0.4, 6.0, 5) >> 11) / 9007199254740992.0;
-        return v > 0.88 ? 3.0f : 1.0f;
-    }
-    return 1.0f;
-}
+static_assert(kTissueCount <= BMODE_MAX_TISSUES, "the kernels' tissue tables hold BMODE_MAX_TISSUES codes");
 
 std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
 {
@@ -91,102 +56,231 @@ std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
     return k;
 }
 
+// element i of a vec4-packed table
+void put(glm::vec4* table, std::size_t i, float value) { table[i / 4][int(i % 4)] = value; }
+
+using glm::vec2;
+using glm::vec3;
+
+// The twin of the three kernels for one frame, the tissue of each pixel from `tissue_of(p)`.
+template <class TissueOf>
+BModeImage run_twin(const kernels::BModeParams& k, const kernels::BModePose& pose, TissueOf&& tissue_of)
+{
+    BModeImage img;
+    img.width = k.columns;
+    img.height = k.rows;
+    const std::size_t w = k.columns, h = k.rows, n = w * h;
+    img.labels.resize(n);
+    std::vector<vec2> field(n), axial(n);
+
+    // pass 1: scatter (bmode_scatter.comp)
+    for (std::uint32_t r = 0; r < k.rows; ++r)
+        for (std::uint32_t c = 0; c < k.columns; ++c) {
+            const vec3 p = kernels::bmode_pixel_world(pose, c, r, k.pixel_mm, k.width_mm);
+            std::uint32_t t = tissue_of(p);
+            t = t < k.tissue_count ? t : 0u;
+            const std::size_t at = r * w + c;
+            field[at] = kernels::bmode_scattered(p, vec3(pose.z), t, k);
+            img.labels[at] = std::uint8_t(t);
+        }
+    // pass 2: down each beam, then the axial PSF (bmode_beam.comp)
+    const int ra = int(k.axial_radius), rows = int(h);
+    for (std::size_t c = 0; c < w; ++c) {
+        float transmitted = 1.0f;
+        std::uint32_t above = 0;
+        for (std::size_t r = 0; r < h; ++r) {
+            const std::size_t at = r * w + c;
+            const std::uint32_t t = img.labels[at];
+            field[at] = kernels::bmode_beam_step(field[at], above, t, r == 0, transmitted, k);
+            above = t;
+        }
+        for (int r = 0; r < rows; ++r) {
+            vec2 s(0.0f);
+            for (int d = -ra; d <= ra; ++d) {
+                const int rr = r + d;
+                if (rr >= 0 && rr < rows) s = s + field[std::size_t(rr) * w + c] * kernels::bmode_axial_tap(std::uint32_t(d + ra), k);
+            }
+            axial[std::size_t(r) * w + c] = s;
+        }
+    }
+    // pass 3: the lateral PSF, the envelope, log compression (bmode_lateral.comp)
+    img.envelope.resize(n);
+    img.pixels.resize(n);
+    const int rl = int(k.lateral_radius), columns = int(w);
+    const LogCompressParams post{0, k.reference, k.gain_db, k.dynamic_range_db};
+    for (std::size_t r = 0; r < h; ++r)
+        for (int c = 0; c < columns; ++c) {
+            vec2 s(0.0f);
+            for (int d = -rl; d <= rl; ++d) {
+                const int cc = c + d;
+                if (cc >= 0 && cc < columns) s = s + axial[r * w + std::size_t(cc)] * kernels::bmode_lateral_tap(std::uint32_t(d + rl), k);
+            }
+            const std::size_t at = r * w + std::size_t(c);
+            img.envelope[at] = kernels::bmode_envelope(s);
+            img.pixels[at] = std::uint8_t(log_compress_pixel(img.envelope[at], post) & 0xffu);
+        }
+    return img;
+}
+
 }  // namespace
 
 double attenuation_db_cm_mhz(Tissue t) { return kAcoustics[std::size_t(t)].attenuation; }
 
-BModeImage synthesize(const Medium& medium, const Pose& pose, const ScanSpec& spec)
+kernels::BModeParams bmode_params(const ScanSpec& spec)
 {
-    BModeImage img;
-    img.width = spec.columns();
-    img.height = spec.rows();
-    const std::size_t n = std::size_t(img.width) * img.height;
-    img.labels.resize(n);
-    std::vector<cplx> field(n);
-    const glm::dvec3 origin(pose.position), ax(pose.axis_x()), ay(pose.axis_y()), az(pose.axis_z());
+    kernels::BModeParams k{};
+    k.columns = spec.columns();
+    k.rows = spec.rows();
+    if (k.columns == 0 || k.rows == 0 || !(spec.pixel_mm > 0))
+        throw std::invalid_argument("ScanSpec: an image of " + std::to_string(k.columns) + " x " + std::to_string(k.rows) + " pixels");
+    k.row_words = (k.columns + 3) / 4;
+    k.tissue_count = kTissueCount;
+    k.texture = spec.texture ? 1u : 0u;
+    k.pixel_mm = float(spec.pixel_mm);
+    k.width_mm = float(spec.width_mm);
+    k.lattice_inverse = float(1.0 / kLattice);
+    k.specular = kSpecular;
+    k.gain_db = float(spec.gain_db);
+    k.dynamic_range_db = float(spec.dynamic_range_db);
+    k.muscle_cells = glm::vec4(float(1 / 0.6), float(1 / 0.6), float(1 / 12.0), 0.0f);
+    k.fat_cells = glm::vec4(float(1 / 1.5), float(1 / 0.4), float(1 / 6.0), 0.0f);
+
+    // the tissues' tables: scattering; the round trip through one pixel less the compensation the
+    // scanner applies; the reflection at each pair's interface and what passes on
+    const double neper_per_db = std::log(10.0) / 20.0;
+    for (std::size_t t = 0; t < kTissueCount; ++t) {
+        put(k.scatter, t, kAcoustics[t].scatter);
+        const double db = 2.0 * (kAcoustics[t].attenuation - spec.tgc_db_per_cm_mhz) * spec.frequency_mhz * spec.pixel_mm / 10.0;
+        put(k.step, t, float(std::exp(-db * neper_per_db)));
+        for (std::size_t u = 0; u < kTissueCount; ++u) {
+            const double z1 = kAcoustics[t].impedance, z2 = kAcoustics[u].impedance;
+            const double r = std::abs(z2 - z1) / (z2 + z1);
+            put(k.reflect, t * BMODE_MAX_TISSUES + u, float(r));
+            put(k.pass, t * BMODE_MAX_TISSUES + u, float(1.0 - r * r));
+        }
+    }
 
     // elevational planes one lattice step apart, weighted by the beam's profile: a probe moved a
     // fraction of a step still sums nearly the same scatterers, so its speckle changes smoothly
-    std::vector<std::pair<double, float>> planes;
     const double sigma_e = spec.elevational_fwhm_mm / 2.3548;
     const int reach = int(std::ceil(1.5 * sigma_e / kLattice));
-    for (int k = -reach; k <= reach; ++k) {
-        const double z = k * kLattice;
-        planes.push_back({z, float(std::exp(-0.5 * z * z / (sigma_e * sigma_e)))});
+    if (2 * reach + 1 > BMODE_MAX_PLANES)
+        throw std::invalid_argument("ScanSpec.elevational_fwhm_mm: " + std::to_string(spec.elevational_fwhm_mm) + " mm needs " +
+                                    std::to_string(2 * reach + 1) + " planes, the kernels hold " + std::to_string(BMODE_MAX_PLANES));
+    for (int e = -reach; e <= reach; ++e) {
+        const double z = e * kLattice;
+        k.elevation[k.planes++] = glm::vec4(float(z), float(std::exp(-0.5 * z * z / (sigma_e * sigma_e))), 0.0f, 0.0f);
     }
 
-    // 1. scatterers, and the tissue in the image plane
-    for (std::uint32_t j = 0; j < img.height; ++j)
-        for (std::uint32_t i = 0; i < img.width; ++i) {
-            const double x = (i + 0.5) * spec.pixel_mm - spec.width_mm / 2, y = (j + 0.5) * spec.pixel_mm;
-            const glm::dvec3 p = origin + x * ax + y * ay;
-            const std::size_t at = std::size_t(j) * img.width + i;
-            const Tissue t = medium.tissue_at(p);
-            img.labels[at] = std::uint8_t(t);
-            cplx sum = 0;
-            for (const auto& [z, w] : planes) sum += w * scatterer(p + z * az);
-            float strength = kAcoustics[std::size_t(t)].scatter;
-            if (spec.texture) strength *= texture(t, p);
-            field[at] = strength * sum;
-        }
-
-    // 2-3. down each beam: specular echoes at interfaces, attenuation, shadowing, time-gain
-    const double neper_per_db = std::log(10.0) / 20.0;
-    for (std::uint32_t i = 0; i < img.width; ++i) {
-        double transmitted = 1.0;  // amplitude reaching this depth and coming back, less TGC
-        for (std::uint32_t j = 0; j < img.height; ++j) {
-            const std::size_t at = std::size_t(j) * img.width + i;
-            const auto t = std::size_t(img.labels[at]);
-            field[at] *= float(transmitted);
-            if (j > 0) {
-                const auto u = std::size_t(img.labels[at - img.width]);
-                if (u != t) {
-                    const float z1 = kAcoustics[u].impedance, z2 = kAcoustics[t].impedance;
-                    const double r = std::abs(z2 - z1) / (z2 + z1);
-                    field[at] += float(kSpecular * r * transmitted);
-                    transmitted *= 1.0 - r * r;  // what is reflected does not go on
-                }
-            }
-            // round trip through this pixel, less the compensation the scanner applies
-            const double db = 2.0 * (kAcoustics[t].attenuation - spec.tgc_db_per_cm_mhz) * spec.frequency_mhz * spec.pixel_mm / 10.0;
-            transmitted *= std::exp(-db * neper_per_db);
-        }
-    }
-
-    // 4. point-spread function, separable: axial (down columns), then lateral (along rows)
+    // the point-spread function, separable
     const std::vector<float> ka = gaussian(spec.axial_fwhm_mm, spec.pixel_mm), kl = gaussian(spec.lateral_fwhm_mm, spec.pixel_mm);
-    const int ra = int(ka.size() / 2), rl = int(kl.size() / 2);
-    std::vector<cplx> tmp(n);
-    for (std::uint32_t j = 0; j < img.height; ++j)
-        for (std::uint32_t i = 0; i < img.width; ++i) {
-            cplx s = 0;
-            for (int d = -ra; d <= ra; ++d) {
-                const int jj = int(j) + d;
-                if (jj >= 0 && jj < int(img.height)) s += ka[std::size_t(d + ra)] * field[std::size_t(jj) * img.width + i];
-            }
-            tmp[std::size_t(j) * img.width + i] = s;
-        }
-    img.envelope.resize(n);
-    for (std::uint32_t j = 0; j < img.height; ++j)
-        for (std::uint32_t i = 0; i < img.width; ++i) {
-            cplx s = 0;
-            for (int d = -rl; d <= rl; ++d) {
-                const int ii = int(i) + d;
-                if (ii >= 0 && ii < int(img.width)) s += kl[std::size_t(d + rl)] * tmp[std::size_t(j) * img.width + std::size_t(ii)];
-            }
-            img.envelope[std::size_t(j) * img.width + i] = std::abs(s);
-        }
+    for (const auto& [taps, field] : {std::pair{&ka, "axial_fwhm_mm"}, std::pair{&kl, "lateral_fwhm_mm"}})
+        if (taps->size() > BMODE_MAX_TAPS)
+            throw std::invalid_argument(std::string("ScanSpec.") + field + ": " + std::to_string(taps->size()) + " taps at " +
+                                        std::to_string(spec.pixel_mm) + " mm pixels, the kernels hold " + std::to_string(BMODE_MAX_TAPS));
+    k.axial_radius = std::uint32_t(ka.size() / 2);
+    k.lateral_radius = std::uint32_t(kl.size() / 2);
+    for (std::size_t i = 0; i < ka.size(); ++i) put(k.axial, i, ka[i]);
+    for (std::size_t i = 0; i < kl.size(); ++i) put(k.lateral, i, kl[i]);
 
-    // 5. log compression: a unit-strength scatterer field shows about 20 dB under white
-    LogCompressParams params{0, 0, float(spec.gain_db), float(spec.dynamic_range_db)};
+    // log compression: a unit-strength scatterer field shows about 20 dB under white
     float psf_gain = 0;
     for (float a : ka)
         for (float l : kl) psf_gain += a * a * l * l;
-    params.reference = 10.0f * std::sqrt(psf_gain * float(planes.size()));
-    const std::vector<std::uint32_t> grey = log_compress_cpu(img.envelope, params);
-    img.pixels.resize(n);
-    for (std::size_t k = 0; k < n; ++k) img.pixels[k] = std::uint8_t(grey[k] & 0xffu);
-    return img;
+    k.reference = 10.0f * std::sqrt(psf_gain * float(k.planes));
+    return k;
+}
+
+kernels::BModeParams bmode_params(const ScanSpec& spec, const io::Volume& labels)
+{
+    kernels::BModeParams k = bmode_params(spec);
+    if (labels.type != io::VoxelType::uint8) throw std::invalid_argument("the label volume's voxels are not uint8 tissue codes");
+    const std::uint8_t* codes = labels.as<std::uint8_t>();
+    for (std::size_t i = 0; i < labels.voxel_count(); ++i)
+        if (codes[i] >= kTissueCount)
+            throw std::invalid_argument("the label volume's voxel " + std::to_string(i) + " holds " + std::to_string(codes[i]) +
+                                        ", not a tissue code (0.." + std::to_string(kTissueCount - 1) + ")");
+    k.volume_size_x = std::uint32_t(labels.size[0]);
+    k.volume_size_y = std::uint32_t(labels.size[1]);
+    k.volume_size_z = std::uint32_t(labels.size[2]);
+    k.volume_origin = glm::vec4(glm::vec3(labels.origin), 1.0f);
+    const glm::dmat3 inverse = glm::inverse(labels.directions);
+    for (int a = 0; a < 3; ++a) k.volume_inverse[a] = glm::vec4(glm::vec3(glm::row(inverse, a)), 0.0f);
+    return k;
+}
+
+kernels::BModePose bmode_pose(const Pose& probe)
+{
+    return {glm::vec4(probe.position, 1.0f), glm::vec4(probe.axis_x(), 0.0f), glm::vec4(probe.axis_y(), 0.0f),
+            glm::vec4(probe.axis_z(), 0.0f)};
+}
+
+BModeImage synthesize(const Medium& medium, const Pose& pose, const ScanSpec& spec)
+{
+    return run_twin(bmode_params(spec), bmode_pose(pose), [&](const glm::vec3& p) { return std::uint32_t(medium.tissue_at(glm::dvec3(p))); });
+}
+
+BModeImage synthesize(const io::Volume& labels, const kernels::BModeParams& params, const Pose& pose)
+{
+    const std::uint8_t* codes = labels.as<std::uint8_t>();
+    return run_twin(params, bmode_pose(pose), [&](const glm::vec3& p) {
+        const int voxel = kernels::bmode_voxel(p, params);
+        return voxel < 0 ? 0u : std::uint32_t(codes[voxel]);
+    });
+}
+
+BModeImage synthesize(const io::Volume& labels, const Pose& pose, const ScanSpec& spec)
+{
+    return synthesize(labels, bmode_params(spec, labels), pose);
+}
+
+io::Volume voxelise_frames(const Medium& medium, std::span<const Pose> poses, const ScanSpec& spec, const LabelVolumeOptions& options)
+{
+    if (poses.empty()) throw std::invalid_argument("voxelise_frames: no frames");
+    if (!(options.in_plane_mm > 0) || !(options.along_mm > 0))
+        throw std::invalid_argument("LabelVolumeOptions: in_plane_mm and along_mm must be positive");
+    std::vector<glm::dmat4> frames;
+    for (const Pose& p : poses) frames.push_back(image_to_world(p, spec));
+    const SweepBox box = sweep_box(frames, spec.columns(), spec.rows());
+    const glm::dvec3 spacing(options.in_plane_mm, options.in_plane_mm, options.along_mm);
+    // a voxel of margin beyond the pixel centres' box, so the nearest voxel of every pixel is inside
+    const glm::dvec3 lo = box.lo - spacing, hi = box.hi + spacing;
+    std::array<std::size_t, 3> size{};
+    for (int a = 0; a < 3; ++a) size[std::size_t(a)] = std::size_t(std::ceil((hi[a] - lo[a]) / spacing[a])) + 1;
+    io::Volume v = io::make_volume(size, io::VoxelType::uint8);
+    v.origin = box.axes * lo;
+    v.directions = glm::dmat3(box.axes[0] * spacing.x, box.axes[1] * spacing.y, box.axes[2] * spacing.z);
+    for (int t = 0; t < kTissueCount; ++t) v.key_values["label_" + std::to_string(t)] = tissue_name(Tissue(t));
+
+    // per slice: the medium on a grid of twice the step, then, in each 2 x 2 block, the block's
+    // tissue where its 4 x 4 coarse neighbourhood agrees, else the medium at each voxel
+    constexpr std::size_t B = 2;
+    const std::size_t nx = size[0], ny = size[1], cx = (nx + B - 1) / B + 1, cy = (ny + B - 1) / B + 1;
+    std::uint8_t* out = v.as<std::uint8_t>();
+    const auto world = [&](double i, double j, double k) { return v.index_to_world(glm::dvec3(i, j, k)); };
+    const int threads = options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    ForkJoin team(std::min(threads, ForkJoin::kMaxParts));
+    team.run([&](int part) {
+        std::vector<std::uint8_t> coarse(cx * cy);
+        for (std::size_t k = std::size_t(part); k < size[2]; k += std::size_t(team.parts())) {
+            for (std::size_t b = 0; b < cy; ++b)
+                for (std::size_t a = 0; a < cx; ++a) coarse[b * cx + a] = std::uint8_t(medium.tissue_at(world(double(a * B), double(b * B), double(k))));
+            std::uint8_t* slice = out + k * nx * ny;
+            for (std::size_t b = 0; b + 1 < cy; ++b)
+                for (std::size_t a = 0; a + 1 < cx; ++a) {
+                    const std::uint8_t t = coarse[b * cx + a];
+                    bool uniform = true;
+                    for (std::size_t bb = b > 0 ? b - 1 : 0; bb <= std::min(b + 2, cy - 1) && uniform; ++bb)
+                        for (std::size_t aa = a > 0 ? a - 1 : 0; aa <= std::min(a + 2, cx - 1) && uniform; ++aa) uniform = coarse[bb * cx + aa] == t;
+                    for (std::size_t j = b * B; j < std::min(b * B + B, ny); ++j)
+                        for (std::size_t i = a * B; i < std::min(a * B + B, nx); ++i)
+                            slice[j * nx + i] = uniform || (i == a * B && j == b * B)
+                                                    ? (uniform ? t : coarse[b * cx + a])
+                                                    : std::uint8_t(medium.tissue_at(world(double(i), double(j), double(k))));
+                }
+        }
+    });
+    return v;
 }
 
 }  // namespace echosim::echo

@@ -14,18 +14,27 @@
 //      laterally), its magnitude the envelope: Rayleigh-distributed speckle where scatterers are
 //      dense (envelope mean / standard deviation = 1.91);
 //   5. log compression to 8 bits over the dynamic range (log_compress.hpp, the GPU kernel's maths).
+// The arithmetic is compute/bmode_bindings.h's, shared with the GPU kernels (compute/bmode_*.comp,
+// driven by image/bmode_gpu.hpp): the functions here are their CPU twin, in float, in the kernels'
+// order. The anatomy reaches the kernels as a tissue-label volume (voxelise_frames) and the
+// tissues' acoustics as tables (bmode_params), so a changed phantom flows in without shader changes.
 // Image geometry (PLUS "MF"): columns along the probe's +x (lateral), rows along +y (depth); the
 // pixel (i, j) centre lies at x = (i + 0.5) * pixel - width / 2, y = (j + 0.5) * pixel.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/pose.hpp"
 #include "core/probe_spec.hpp"
+#include "bmode_bindings.h"
 #include "echo/phantom.hpp"
+#include "io/nrrd.hpp"
 
 namespace echosim::echo {
 
@@ -66,7 +75,37 @@ struct BModeImage {
 // to take away the posterior enhancement behind a lumen that closes).
 double attenuation_db_cm_mhz(Tissue t);
 
+// The image at `probe`, the tissue of each pixel asked of `medium` directly.
 BModeImage synthesize(const Medium& medium, const Pose& probe, const ScanSpec& spec);
+
+// The kernels' fixed parameters for `spec` (the tissues' acoustic tables, the point-spread
+// function's taps, the elevational planes, log compression), without a label volume. Throws
+// std::invalid_argument naming the ScanSpec field whose value needs more taps or planes than the
+// kernels hold (bmode_bindings.h), or an image of no pixels.
+kernels::BModeParams bmode_params(const ScanSpec& spec);
+// ... and with the geometry of `labels` (uint8 tissue codes, checked below kTissueCount: throws
+// std::invalid_argument naming the first voxel that is not).
+kernels::BModeParams bmode_params(const ScanSpec& spec, const io::Volume& labels);
+kernels::BModePose bmode_pose(const Pose& probe);
+
+// The anatomy the frames at `poses` cover, as the kernels take it: tissue codes (uint8, Tissue) on
+// a grid aligned with the frames (reconstruct.hpp's sweep box), `in_plane_mm` across the frames
+// and `along_mm` between them, a voxel of margin all round. Voxelised on `threads` threads (0: all
+// cores), sampling the medium on a grid twice as coarse first and only where the tissue differs in
+// a block's neighbourhood (0.9 mm across) at every voxel: a feature thinner than the coarse step
+// (0.4 mm at the defaults) with the same tissue either side can fall between the coarse samples.
+struct LabelVolumeOptions {
+    double in_plane_mm = 0.2;  // the tissue codes' step in the image plane: half a lateral PSF width
+    double along_mm = 1.0;     // between frames: the anatomy changes slowly along the limb
+    int threads = 0;
+};
+io::Volume voxelise_frames(const Medium& medium, std::span<const Pose> poses, const ScanSpec& spec, const LabelVolumeOptions& options = {});
+
+// The image at `probe` with the tissue of each pixel looked up in `labels` (nearest voxel; outside
+// it: gel): the GPU kernels' twin, to within rounding (tests/image/bmode_gpu_test.cpp).
+BModeImage synthesize(const io::Volume& labels, const Pose& probe, const ScanSpec& spec);
+// The same with the parameters made once (bmode_params(spec, labels)), for many frames.
+BModeImage synthesize(const io::Volume& labels, const kernels::BModeParams& params, const Pose& probe);
 
 // The phantom as a medium.
 class PhantomMedium : public Medium {

@@ -17,7 +17,11 @@ CaseVolume make_case_volume(const scene::LegModel& leg, Case which, const CaseVo
     sweep_options.frames = options.frames;
     sweep_options.spec.pixel_mm = options.pixel_mm;
     sweep_options.spec.depth_mm = options.depth_mm;
-    const TrackedSweep sweep = make_sweep(leg, medium, sweep_options, [&](int done, int total) { tell("imaging the sweep", double(done) / total); });
+    tell("voxelising the anatomy", 0.0);
+    const auto labels = std::make_shared<const io::Volume>(voxelise_frames(medium, sweep_poses(leg, sweep_options), sweep_options.spec, options.anatomy));
+    const std::unique_ptr<SweepImager> imager =
+        options.imager ? options.imager(labels, sweep_options.spec) : std::make_unique<CpuSweepImager>(labels, sweep_options.spec);
+    const TrackedSweep sweep = make_sweep(leg, *imager, sweep_options, [&](int done, int total) { tell("imaging the sweep", double(done) / total); });
 
     const SweepBox box = sweep_box(sweep.sweep);
     ReconstructOptions reconstruct;

@@ -6,9 +6,11 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "echo/phantom.hpp"
+#include "echo/sweep.hpp"
 #include "io/nrrd.hpp"
 #include "scene/leg.hpp"
 
@@ -26,6 +28,10 @@ struct CaseVolumeOptions {
     // the frames' depth [mm]: the image's 50 mm and the deepest press (25 mm), so a pressed probe
     // still finds tissue at the bottom of its image
     double depth_mm = 75.0;
+    LabelVolumeOptions anatomy;  // the phantom voxelised over the frames, as the imager takes it
+    // What images the frames from the anatomy's label volume: empty, the CPU twin (CpuSweepImager);
+    // the app layer hands the GPU's here when a device is at hand (image/bmode_gpu.hpp).
+    std::function<std::unique_ptr<SweepImager>(std::shared_ptr<const io::Volume> labels, const ScanSpec& spec)> imager;
 };
 
 // `progress` (may be empty) is told what is being done and the fraction of it done.

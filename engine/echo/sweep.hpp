@@ -6,6 +6,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <span>
+#include <string>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -37,7 +40,47 @@ struct TrackedSweep {
 // Pixel (column, row) of an image taken at `pose` to world mm.
 glm::dmat4 image_to_world(const Pose& pose, const ScanSpec& spec);
 
+// The sweep's probe poses: down the patch, with the hand's tremor (seeded by options.seed).
+std::vector<Pose> sweep_poses(const scene::LegModel& leg, const SweepOptions& options);
+
+// The sweep imaged with the tissue of each pixel asked of `medium` directly, one frame at a time
+// on this thread.
 TrackedSweep make_sweep(const scene::LegModel& leg, const Medium& medium, const SweepOptions& options,
+                        const std::function<void(int done, int total)>& progress = {});
+
+// What images a sweep's frames from the anatomy as a label volume (voxelise_frames): the CPU twin
+// (CpuSweepImager) or the GPU kernels (image/bmode_gpu.hpp), chosen by the caller (the app layer,
+// which may see the GPU).
+class SweepImager {
+public:
+    virtual ~SweepImager() = default;
+    // Frames per image() call that suit it (a GPU batch; the CPU's threads).
+    virtual std::size_t batch_frames() const = 0;
+    // Grey pixels and tissue codes of the frames at `poses`, row-major, frame after frame (each
+    // columns x rows of the imager's ScanSpec), into `pixels` and `labels`.
+    virtual void image(std::span<const Pose> poses, std::uint8_t* pixels, std::uint8_t* labels) = 0;
+    // Which backend images: "cpu", or the Vulkan device's name.
+    virtual std::string backend() const = 0;
+};
+
+// The CPU twin of the kernels, frames in parallel on `threads` threads (0: all cores).
+class CpuSweepImager : public SweepImager {
+public:
+    CpuSweepImager(std::shared_ptr<const io::Volume> labels, const ScanSpec& spec, int threads = 0);
+    ~CpuSweepImager() override;
+    std::size_t batch_frames() const override;
+    void image(std::span<const Pose> poses, std::uint8_t* pixels, std::uint8_t* labels) override;
+    std::string backend() const override { return "cpu"; }
+
+private:
+    std::shared_ptr<const io::Volume> labels_;
+    kernels::BModeParams params_;
+    struct Team;
+    std::unique_ptr<Team> team_;
+};
+
+// The sweep imaged by `imager` (made for options.spec), `imager.batch_frames()` frames at a time.
+TrackedSweep make_sweep(const scene::LegModel& leg, SweepImager& imager, const SweepOptions& options,
                         const std::function<void(int done, int total)>& progress = {});
 
 }  // namespace echosim::echo

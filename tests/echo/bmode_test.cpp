@@ -1,10 +1,14 @@
 #include "echo/bmode.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include "echo/bmode_gates.hpp"
 
 namespace echosim::echo {
 namespace {
@@ -135,6 +139,52 @@ TEST(BMode, BoneCastsAShadow)
         ++columns;
     }
     EXPECT_GT(columns, 20);
+}
+
+// Issue 33's speckle gates on the CPU twin (the GPU's: tests/image/bmode_gpu_test.cpp, same body):
+// Rayleigh statistics, and speckle as large as the configured point-spread function.
+TEST(BMode, TwinSpeckleGates)
+{
+    const Pose pose = leg().probe_rest_pose(0.5f, 0.5f);
+    const ScanSpec spec = gates::homogeneous_spec(30, 30);
+    const io::Volume labels = gates::muscle_volume(pose, spec);
+    const BModeImage img = synthesize(labels, pose, spec);
+    // the twin with the tissue from the volume is the twin with the tissue asked directly
+    EXPECT_EQ(img.pixels, synthesize(Homogeneous{}, pose, spec).pixels);
+    const double snr = gates::speckle_snr(img, 20);
+    const double axial = gates::autocovariance_fwhm_mm(img, 20, false, spec.pixel_mm);
+    const double lateral = gates::autocovariance_fwhm_mm(img, 20, true, spec.pixel_mm);
+    std::printf("CPU twin: speckle SNR %.3f, autocovariance FWHM axial %.3f mm (PSF %.2f), lateral %.3f mm (PSF %.2f)\n", snr, axial,
+                spec.axial_fwhm_mm, lateral, spec.lateral_fwhm_mm);
+    EXPECT_NEAR(snr, 1.913, 0.1);
+    EXPECT_NEAR(axial, spec.axial_fwhm_mm, 0.1 * spec.axial_fwhm_mm);
+    EXPECT_NEAR(lateral, spec.lateral_fwhm_mm, 0.1 * spec.lateral_fwhm_mm);
+}
+
+TEST(BMode, LabelVolumeKeepsThePhantomsTissues)
+{
+    // the phantom voxelised over one frame (0.2 mm in plane) against the tissue asked at every pixel:
+    // they differ only along boundaries, within a voxel
+    const Phantom phantom(leg(), Case::dvt_acute);
+    const PhantomMedium medium(phantom);
+    const Pose pose = leg().probe_rest_pose(0.5f, 0.5f);
+    ScanSpec spec;
+    spec.depth_mm = 40;
+    const io::Volume labels = voxelise_frames(medium, std::span(&pose, 1), spec);
+    const BModeImage direct = synthesize(medium, pose, spec), voxelised = synthesize(labels, pose, spec);
+    std::size_t same = 0;
+    for (std::size_t k = 0; k < direct.labels.size(); ++k) same += direct.labels[k] == voxelised.labels[k];
+    const double agree = double(same) / double(direct.labels.size());
+    std::printf("labels from the 0.2 mm volume agree with the phantom's at %.2f %% of pixels\n", 100 * agree);
+    EXPECT_GT(agree, 0.97);
+    // every tissue the frame shows is in the volume's frame too, about as large
+    for (int t = 0; t < kTissueCount; ++t) {
+        const auto count = [&](const std::vector<std::uint8_t>& v) { return double(std::count(v.begin(), v.end(), std::uint8_t(t))); };
+        const double a = count(direct.labels), b = count(voxelised.labels);
+        if (a > 500) {
+            EXPECT_NEAR(b / a, 1.0, 0.1) << tissue_name(Tissue(t));
+        }
+    }
 }
 
 }  // namespace

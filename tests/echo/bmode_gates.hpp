@@ -1,0 +1,93 @@
+// The B-mode model's quality gates (issue 33), one body for the CPU twin (tests/echo/bmode_test.cpp)
+// and the GPU kernels (tests/image/bmode_gpu_test.cpp): speckle statistics measured on the envelope
+// (before log compression) of an image of homogeneous tissue.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "echo/bmode.hpp"
+
+namespace echosim::echo::gates {
+
+// A scan of plain speckle: no texture, the TGC exactly the muscle's attenuation (no depth trend).
+inline ScanSpec homogeneous_spec(double width_mm, double depth_mm)
+{
+    ScanSpec spec;
+    spec.width_mm = width_mm;
+    spec.depth_mm = depth_mm;
+    spec.texture = false;
+    spec.tgc_db_per_cm_mhz = 0.9;
+    return spec;
+}
+
+// An all-muscle label volume around a pose's frame, on a grid of its own (1 mm).
+inline io::Volume muscle_volume(const Pose& pose, const ScanSpec& spec)
+{
+    struct Muscle : Medium {
+        Tissue tissue_at(const glm::dvec3&) const override { return Tissue::muscle; }
+    };
+    LabelVolumeOptions o;
+    o.in_plane_mm = 1.0;
+    return voxelise_frames(Muscle{}, std::span(&pose, 1), spec, o);
+}
+
+// The envelope inside the image, `margin` pixels from its edges (where the PSF is cut).
+inline std::vector<double> interior(const BModeImage& img, std::uint32_t margin)
+{
+    std::vector<double> v;
+    for (std::uint32_t j = margin; j + margin < img.height; ++j)
+        for (std::uint32_t i = margin; i + margin < img.width; ++i) v.push_back(img.envelope[std::size_t(j) * img.width + i]);
+    return v;
+}
+
+// mean / standard deviation of the envelope: sqrt(pi / (4 - pi)) = 1.913 for Rayleigh speckle
+inline double speckle_snr(const BModeImage& img, std::uint32_t margin)
+{
+    const std::vector<double> v = interior(img, margin);
+    double m = 0, s = 0;
+    for (double x : v) m += x;
+    m /= double(v.size());
+    for (double x : v) s += (x - m) * (x - m);
+    return m / std::sqrt(s / double(v.size()));
+}
+
+// Full width at half maximum [mm] of the intensity (envelope squared) autocovariance along the
+// rows (`lateral`) or the columns: for a Gaussian amplitude PSF of FWHM w over white scatterers it
+// is w itself (the field's autocorrelation is the PSF's, sqrt 2 wider; the intensity's is its square).
+inline double autocovariance_fwhm_mm(const BModeImage& img, std::uint32_t margin, bool lateral, double pixel_mm)
+{
+    const int w = int(img.width), h = int(img.height), m = int(margin);
+    double mean = 0;
+    int n = 0;
+    for (int j = m; j < h - m; ++j)
+        for (int i = m; i < w - m; ++i) mean += double(img.envelope[std::size_t(j * w + i)]) * img.envelope[std::size_t(j * w + i)], ++n;
+    mean /= n;
+    const auto intensity = [&](int i, int j) {
+        const double e = img.envelope[std::size_t(j * w + i)];
+        return e * e - mean;
+    };
+    const auto covariance = [&](int lag) {
+        double s = 0;
+        int count = 0;
+        for (int j = m; j < h - m; ++j)
+            for (int i = m; i < w - m; ++i) {
+                const int i2 = lateral ? i + lag : i, j2 = lateral ? j : j + lag;
+                if (i2 >= w - m || j2 >= h - m) continue;
+                s += intensity(i, j) * intensity(i2, j2);
+                ++count;
+            }
+        return s / count;
+    };
+    const double c0 = covariance(0);
+    double previous = 1.0;
+    for (int lag = 1; lag < 64; ++lag) {
+        const double c = covariance(lag) / c0;
+        if (c < 0.5) return 2.0 * pixel_mm * (lag - 1 + (previous - 0.5) / (previous - c));  // linear between the lags
+        previous = c;
+    }
+    return 1e9;
+}
+
+}  // namespace echosim::echo::gates
