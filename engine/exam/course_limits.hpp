@@ -20,9 +20,10 @@ namespace echosim::exam::course {
 inline constexpr double kSfj_cm = 3.0;           // the saphenofemoral junction, on the CFV
 inline constexpr double kBifurcation_cm = 5.0;   // the CFV divides into the FV and the DFV
 inline constexpr double kHiatus_cm = 35.0;       // the adductor hiatus: the FV becomes the popliteal vein
+inline constexpr double kPoplitealFossa_cm = 42.0;  // the popliteal vein behind the knee
 inline constexpr double kTrifurcation_cm = 50.0; // the popliteal vein ends at the calf veins
-inline constexpr double kGsvModelled_cm = 8.0;   // the great saphenous vein modelled from the SFJ
-inline constexpr double kDfvModelled_cm = 5.0;   // the deep femoral vein modelled from the bifurcation
+inline constexpr double kGsvModelled_cm = 40.0;  // the great saphenous vein modelled from the SFJ (down to the knee)
+inline constexpr double kDfvModelled_cm = 6.5;   // the deep femoral vein modelled from the bifurcation
 
 // A segment's span in its own s, and what bounds it (for messages).
 struct SegmentSpan {
@@ -56,7 +57,8 @@ inline constexpr bool on_deep_vein(echo::VeinSegment s)
     return s == echo::VeinSegment::cfv || s == echo::VeinSegment::fv || s == echo::VeinSegment::popliteal;
 }
 
-// A place a station may name instead of a distance.
+// A place a station may name instead of a distance: the phantom's landmarks (the same names and
+// places) and the places the protocols compress between them (the groin, mid-thigh, the canal).
 struct Landmark {
     std::string_view name;          // as the file writes it: "sfj"
     std::string_view station_name;  // the station's default name: "SFJ"
@@ -65,13 +67,15 @@ struct Landmark {
     std::string_view what;          // for the instructor (README, schema)
 };
 
-inline constexpr std::array<Landmark, 7> kLandmarks{{
-    {"cfv", "CFV", echo::VeinSegment::cfv, 1.0, "the common femoral vein at the groin, 1 cm below the inguinal ligament, above the SFJ"},
+inline constexpr std::array<Landmark, 9> kLandmarks{{
+    {"inguinal-ligament", "Inguinal ligament", echo::VeinSegment::cfv, 0.0, "the CFV at the inguinal ligament, where the course begins"},
+    {"groin", "CFV", echo::VeinSegment::cfv, 1.0, "the common femoral vein at the groin, 1 cm below the inguinal ligament, above the SFJ"},
     {"sfj", "SFJ", echo::VeinSegment::cfv, kSfj_cm, "the saphenofemoral junction (the great saphenous vein joining from medial)"},
     {"bifurcation", "Bifurcation", echo::VeinSegment::cfv, kBifurcation_cm, "the femoral bifurcation: the CFV dividing into the FV and the DFV"},
     {"mid-thigh-fv", "FV mid-thigh", echo::VeinSegment::fv, 20.0, "the femoral vein at mid-thigh"},
     {"adductor-canal", "FV adductor canal", echo::VeinSegment::fv, kHiatus_cm - 2.0, "the femoral vein in the adductor canal, 2 cm above the hiatus"},
-    {"popliteal", "Popliteal", echo::VeinSegment::popliteal, 42.0, "the popliteal vein behind the knee, superficial to the artery"},
+    {"adductor-hiatus", "FV adductor hiatus", echo::VeinSegment::fv, kHiatus_cm, "the femoral vein at the adductor hiatus, where it becomes the popliteal vein"},
+    {"popliteal-fossa", "Popliteal", echo::VeinSegment::popliteal, kPoplitealFossa_cm, "the popliteal vein behind the knee, superficial to the artery"},
     {"trifurcation", "Trifurcation", echo::VeinSegment::popliteal, kTrifurcation_cm, "the popliteal vein at the calf veins' trifurcation"},
 }};
 

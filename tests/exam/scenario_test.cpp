@@ -61,12 +61,12 @@ json full_case()
       },
       "protocol": "extended",
       "stations": [
-        {"landmark": "cfv", "name": "Groin", "comment": "c"},
+        {"landmark": "groin", "name": "Groin", "comment": "c"},
         {"landmark": "sfj"},
         {"segment": "fv", "s_cm": 6, "name": "FV top", "comment": "c"},
         {"every_cm": 2, "segment": "fv", "from_cm": 8, "to_cm": 34, "comment": "c"},
         {"segment": "popliteal", "s_cm": 40},
-        {"landmark": "popliteal"},
+        {"landmark": "popliteal-fossa"},
         {"segment": "gsv", "s_cm": 2}
       ],
       "bands": {"adequate_force_N": 9, "excessive_force_N": 25, "reach_mm": 4, "transverse_deg": 12, "collapsed_ratio": 0.15,
@@ -481,7 +481,7 @@ TEST(Scenario, EachProtocolAcceptsItsOwnStations)
         d["stations"] = std::move(stations);
         return refusal_of(d);
     };
-    const json cfv = {{"landmark", "cfv"}}, sfj = {{"landmark", "sfj"}}, pop = {{"landmark", "popliteal"}},
+    const json cfv = {{"landmark", "groin"}}, sfj = {{"landmark", "sfj"}}, pop = {{"landmark", "popliteal-fossa"}},
                mid = {{"landmark", "mid-thigh-fv"}};
     EXPECT_FALSE(with("two-point", {cfv, pop}).refused) << with("two-point", {cfv, pop}).message;
     EXPECT_FALSE(with("two-point", {cfv, sfj, pop}).refused);
@@ -709,7 +709,7 @@ TEST(ScenarioSchema, NamesFromASetAreTheReaders)
     for (const std::string& lm : landmarks) {
         json d = full_case();
         d["protocol"] = "two-point";
-        d["stations"] = json::array({{{"landmark", "cfv"}, {"name", "Groin"}}, {{"landmark", "popliteal"}, {"name", "Knee"}}, {{"landmark", lm}}});
+        d["stations"] = json::array({{{"landmark", "groin"}, {"name", "Groin"}}, {{"landmark", "popliteal-fossa"}, {"name", "Knee"}}, {{"landmark", lm}}});
         const Refusal r = refusal_of(d);
         // each landmark is read (a station on the FV breaks two-point, and one out of order breaks the order: both past the reading)
         EXPECT_TRUE(!r.refused || r.field == "/stations/2") << lm << ": " << r.message;
