@@ -14,7 +14,6 @@
 #include "app/exercise_script.hpp"
 #include "app/gpu_args.hpp"
 #include "app/live_link.hpp"
-#include "app/session_frame.hpp"
 #include "app/stop_signals.hpp"
 #include "app/terminal_progress.hpp"
 #include "app/volume_source.hpp"
@@ -28,6 +27,7 @@
 #include "core/parse_number.hpp"
 #include "gpu/window.hpp"
 #include "igtl/server.hpp"
+#include "runner/runner.hpp"
 
 namespace echosim::app {
 namespace {
@@ -61,6 +61,105 @@ void report_link(igtl::Server& link, std::vector<igtl::ServerEvent>& events)
         }
     }
 }
+
+// The run's input, polled by the runner before the session advances: GLFW's events, then the
+// window's mouse and keyboard (or the smoke test's script) to the window, the camera and the
+// mouse-and-keyboard device (read only when it is the session's device).
+class RunControls final : public runner::Input {
+public:
+    RunControls(std::unique_ptr<InputSource> source, std::shared_ptr<device::MouseKeyboardDevice> mouse)
+        : source_(std::move(source)), mouse_(std::move(mouse))
+    {
+    }
+    bool poll(runner::Runner& runner, double dt_s) override
+    {
+        glfwPollEvents();
+        const RunInput in = source_->poll(float(dt_s));
+        if (in.quit) return false;
+        apply_to_window(in, *runner.window());
+        runner.scene().camera.orbit(in.orbit_yaw, in.orbit_pitch);
+        runner.scene().camera.zoom(in.zoom);
+        mouse_->feed(in.probe);
+        return true;
+    }
+
+private:
+    std::unique_ptr<InputSource> source_;
+    std::shared_ptr<device::MouseKeyboardDevice> mouse_;
+};
+
+// What the run says and shows beside the frame: the device's events (and, while it is away, the
+// title says so), the live link's clients, the title bar (the press and the force, five times a
+// second of session time), the frames presented and the display rate; and when the run ends: the
+// window closed, the frames asked for presented, or a signal (app/stop_signals.hpp).
+class RunConsole final : public runner::Observer {
+public:
+    RunConsole(int frames, const StopSignals& stop, igtl::Server* link) : frames_(frames), stop_(stop), link_(link) {}
+
+    // every frame's image read back (a slot behind, no wait) and published with the pose it was drawn at
+    void serve(runner::Runner& runner)
+    {
+        const echo::ImagePlane* plane = &runner.session().image_plane();  // the runner's: it outlives the frames
+        runner.frame()->echo_pass().enable_readback(*runner.context(), [this, plane](const echo::EchoFrame& drawn,
+                                                                                   std::span<const std::uint8_t> grey, double wall_clock_s) {
+            fill_live_frame(live_, *plane, drawn, grey, wall_clock_s);
+            link_->publish(live_);
+        });
+    }
+
+    void on_attach(runner::Runner& runner) override { window_ = runner.window(); }
+    bool should_stop() override
+    {
+        return window_->should_close() || (frames_ != 0 && presented_ >= frames_) || stop_.requested() != 0;
+    }
+    void on_step(runner::StepContext& step) override
+    {
+        events_.clear();
+        step.session.device()->events(events_);
+        for (const device::DeviceEvent& e : events_) {
+            std::printf("echosim run: %s: %s: %s\n", e.device.c_str(), device::to_string(e.kind), e.message.c_str());
+            if (e.kind == device::DeviceEvent::Kind::connected) device_status_.clear();
+            if (e.kind == device::DeviceEvent::Kind::disconnected || e.kind == device::DeviceEvent::Kind::access_denied)
+                device_status_ = e.device + " " + device::to_string(e.kind);
+            last_title_ = -1;
+        }
+        if (link_) report_link(*link_, link_events_);
+        const session::SessionView& state = step.view;
+        if (step.session.time() - last_title_ > 0.2) {
+            char title[160];
+            if (device_status_.empty())
+                std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", state.press_mm, state.probe_force_N);
+            else
+                std::snprintf(title, sizeof title, "echosim - %s: looking for it - probe %.1f N", device_status_.c_str(), state.probe_force_N);
+            glfwSetWindowTitle(window_->handle(), title);
+            last_title_ = step.session.time();
+        }
+    }
+    void on_frame(const runner::FrameContext& frame) override
+    {
+        if (!frame.shown) return;
+        last_shown_ = std::chrono::steady_clock::now();
+        if (++presented_ == 1) first_shown_ = last_shown_;
+    }
+
+    int presented() const { return presented_; }
+    // the display's time, from the first presented frame (set-up and the first frame's pipeline
+    // compilation excluded) to the last
+    double shown_s() const { return std::chrono::duration<double>(last_shown_ - first_shown_).count(); }
+
+private:
+    int frames_;  // stop after this many presented frames (0: until the window closes)
+    const StopSignals& stop_;
+    igtl::Server* link_;
+    gpu::Window* window_ = nullptr;
+    igtl::LiveFrame live_;
+    std::vector<igtl::ServerEvent> link_events_;
+    std::vector<device::DeviceEvent> events_;
+    std::string device_status_;  // what the title says of the device while it is away
+    double last_title_ = -1;
+    int presented_ = 0;
+    std::chrono::steady_clock::time_point first_shown_, last_shown_;
+};
 
 }  // namespace
 
@@ -167,108 +266,58 @@ int run_window(const RunArgs& args)
     // nothing is held then that needs letting go.
     const StopSignals stop;
 
-    gpu::Window window({args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"});
-    gpu::ContextOptions options = context_options(args.gpu);
-    options.instance_extensions = gpu::Window::required_instance_extensions();
-    options.can_present = &gpu::Window::can_present;
-    int presented = 0;
-    // the display rate, from the first presented frame (set-up and the first frame's pipeline
-    // compilation excluded) to the last
-    std::chrono::steady_clock::time_point first_shown, last_shown;
+    // The run is the runner's window configuration (runner/runner.hpp): the window, the session on
+    // the real-time clock (the tissue in its own thread at 1 kHz; the window sends the probe and
+    // draws the latest surface the physics published), the frame (the scene, and beside it the
+    // echographic image made on the GPU every frame from the same physics step); what the run adds
+    // is its input (RunControls) and its console, title, limits and live link (RunConsole).
+    runner::RunnerConfig config;
+    config.name = "run";
+    config.session = session_options;
+    config.output = runner::Output::window;
+    config.window = {args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"};
+    config.gpu = context_options(args.gpu);
+    config.volume = volumes.volume;
+    config.labels = volumes.labels;
+    auto console = std::make_shared<RunConsole>(args.frames, stop, link.get());
+    config.observers.push_back(console);
     std::uint32_t swapchains = 0;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
-        gpu::Context ctx(options);
-        messages = ctx.validation_counter();
-        // the tissue runs in its own thread at 1 kHz; the window sends the probe and draws the
-        // latest surface the physics published
-        DefaultScene scene(session_options);
-        if (!scene.session.haptics_note().empty()) std::printf("echosim run: %s\n", scene.session.haptics_note().c_str());
-        gpu::CommandPool commands(ctx);  // this (the main) thread's
-        gpu::WindowPresenter presenter(commands, window);
-        // the scene, and beside it the echographic image made on the GPU every frame from the
-        // session's latest physics step
-        SessionFrame frame(ctx, commands, presenter.format(), scene, volumes);
+        runner::Runner runner(std::move(config));
+        messages = runner.validation_counter();
+        session::Session& session = runner.session();
+        if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
         // with the link: every frame's image read back (a slot behind, no wait) and published with
         // the pose it was drawn at
-        igtl::LiveFrame live;
-        std::vector<igtl::ServerEvent> link_events;
-        if (link)
-            frame.echo_pass().enable_readback(ctx, [&](const echo::EchoFrame& drawn, std::span<const std::uint8_t> grey, double wall_clock_s) {
-                fill_live_frame(live, scene.session.image_plane(), drawn, grey, wall_clock_s);
-                link->publish(live);
-            });
+        if (link) console->serve(runner);
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
                     "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
-                    ctx.device_name().c_str(), presenter.extent().width, presenter.extent().height);
+                    runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
 
         std::unique_ptr<InputSource> input;
         if (args.exercise)
             input = std::make_unique<ExerciseScript>(glm::ivec2(args.width, args.height));
         else
-            input = std::make_unique<WindowInput>(window);
-        double last_title = -1;
-        std::vector<device::DeviceEvent> events;
-        std::string device_status;  // what the title says of the device while it is away
-        auto last = std::chrono::steady_clock::now();
-        while (!window.should_close() && (args.frames == 0 || presented < args.frames) && !stop.requested()) {
-            glfwPollEvents();
-            const auto now = std::chrono::steady_clock::now();
-            // a frame's time as the probe's speed sees it: a stall (a dragged window) is no leap
-            const float dt = std::clamp(std::chrono::duration<float>(now - last).count(), 1e-4f, 0.1f);
-            last = now;
+            input = std::make_unique<WindowInput>(*runner.window());
+        runner.set_input(std::make_shared<RunControls>(std::move(input), mouse));
+        runner.run();  // ends stopping the session: the haptic loop first, which sends the device a zero force
 
-            const RunInput in = input->poll(dt);
-            if (in.quit) break;
-            apply_to_window(in, window);
-            scene.camera.orbit(in.orbit_yaw, in.orbit_pitch);
-            scene.camera.zoom(in.zoom);
-            mouse->feed(in.probe);  // read only when the mouse and keyboard are the session's device
-            scene.session.advance(dt);
-            events.clear();
-            scene.session.device()->events(events);
-            for (const device::DeviceEvent& e : events) {
-                std::printf("echosim run: %s: %s: %s\n", e.device.c_str(), device::to_string(e.kind), e.message.c_str());
-                if (e.kind == device::DeviceEvent::Kind::connected) device_status.clear();
-                if (e.kind == device::DeviceEvent::Kind::disconnected || e.kind == device::DeviceEvent::Kind::access_denied)
-                    device_status = e.device + " " + device::to_string(e.kind);
-                last_title = -1;
-            }
-            if (link) report_link(*link, link_events);
-
-            const session::SessionView& state = scene.session.view();  // one physics step for the scene and the image
-            frame.set(scene, state, presenter.extent());
-            if (scene.session.time() - last_title > 0.2) {
-                char title[160];
-                if (device_status.empty())
-                    std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", state.press_mm, state.probe_force_N);
-                else
-                    std::snprintf(title, sizeof title, "echosim - %s: looking for it - probe %.1f N", device_status.c_str(), state.probe_force_N);
-                glfwSetWindowTitle(window.handle(), title);
-                last_title = scene.session.time();
-            }
-            if (presenter.draw(frame.passes())) {
-                last_shown = std::chrono::steady_clock::now();
-                if (++presented == 1) first_shown = last_shown;
-            }
-            else
-                glfwWaitEventsTimeout(0.05);  // minimised: do not spin
-        }
-        swapchains = presenter.swapchain_generation();
-        scene.session.stop();  // first: the haptic loop ends and sends the device a zero force
+        swapchains = runner.window_output()->swapchain_generation();
         if (const int signal = stop.requested()) std::printf("echosim run: stopped by %s\n", StopSignals::name(signal));
-        const physics::RunnerStats st = scene.session.physics_stats();
+        const physics::RunnerStats st = session.physics_stats();
         std::printf("echosim run: physics stepped %lld times (%lld late, %lld asleep), last probe force %.2f N\n",
                     static_cast<long long>(st.steps), static_cast<long long>(st.overruns), static_cast<long long>(st.asleep),
-                    scene.session.view().probe_force_N);
-        if (haptics::HapticLoop* loop = scene.session.haptic_loop()) {
+                    session.view().probe_force_N);
+        if (haptics::HapticLoop* loop = session.haptic_loop()) {
             const haptics::PeriodStats h = loop->stats();
             std::printf("echosim run: haptic loop ticked %lld times; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines\n",
                         static_cast<long long>(loop->ticks()), h.error_quantile_ms(0.5), h.error_quantile_ms(0.99), h.max_error_ms,
                         static_cast<long long>(h.missed_deadlines));
         }
     }
-    const double shown_s = std::chrono::duration<double>(last_shown - first_shown).count();
+    const int presented = console->presented();
+    const double shown_s = console->shown_s();
     std::printf("echosim run: presented %d frames, swapchain created %u times (%.1f frames/s)\n", presented, swapchains,
                 presented > 1 && shown_s > 0 ? (presented - 1) / shown_s : 0.0);
     if (link) {

@@ -13,6 +13,7 @@
 #include "io/partial_file.hpp"
 #include "io/plot.hpp"
 #include "io/png.hpp"
+#include "runner/runner.hpp"
 #include "session/session.hpp"
 
 namespace echosim::app {
@@ -88,38 +89,60 @@ device::Trajectory make_round_trip_trajectory(const scene::LegModel& leg, const 
     return device::Trajectory::parse(device::format_trajectory(rows), "the slide script, there and back");
 }
 
-Fig8Result run_fig8(const SlideScript& script, double physics_hz)
+namespace {
+
+// The demo's observer: every step (one haptic tick) a row of the log, from the loop's latest tick.
+class Fig8Log final : public runner::Observer {
+public:
+    Fig8Log(Fig8Result& r, const SlideTrajectory& slide) : r_(r), slide_(slide) {}
+    void on_step(runner::StepContext& step) override
+    {
+        const haptics::HapticSample& h = step.session.haptic_loop()->latest();
+        ForceLogRow row;
+        row.t_s = h.time_s;
+        row.local_model_N = h.force.along_N;
+        row.held_physics_N = h.physics_force_N;
+        row.physics_step = h.physics_step;
+        row.on_skin = h.time_s >= slide_.on_skin_from_s && h.time_s <= slide_.on_skin_to_s;
+        r_.rows.push_back(row);
+    }
+
+private:
+    Fig8Result& r_;
+    const SlideTrajectory& slide_;
+};
+
+}  // namespace
+
+Fig8Result run_fig8(const SlideScript& script, double physics_hz, std::vector<std::shared_ptr<runner::Observer>> observers)
 {
     if (!(physics_hz >= 10.0 && physics_hz <= 1000.0))
         throw std::invalid_argument("physics rate " + std::to_string(physics_hz) + " Hz: outside 10..1000");
     const scene::LegModel leg;  // the session's leg is made the same way
     const SlideTrajectory slide = make_slide_trajectory(leg, script);
-    session::SessionOptions o;
+    // the runner's configuration with no frame, lock-step, one step per haptic tick
+    runner::RunnerConfig c;
+    c.name = "haptics-demo";
+    session::SessionOptions& o = c.session;
     o.clock = session::Clock::lock_step;
     // the physics refreshes the loop at physics_hz, stepping the tissue 1 ms at a time in between
     // (physics_options.hpp: one 10 ms step is not accurate enough for the stiff contact)
     o.physics.time_step = 1e-3;
     o.physics.steps_per_publish = int(std::max(1L, std::lround(1000.0 / physics_hz)));
     o.device = std::make_shared<device::ScriptedDevice>(slide.trajectory, "the slide script");
-    session::Session session(o);
-    haptics::HapticLoop& loop = *session.haptic_loop();
+    const double period_s = 1.0 / o.haptics.rate_hz;  // the loop's (HapticLoop::period_s)
+    c.lock_step_dt_s = period_s;
+    c.max_steps = std::lround(slide.trajectory.end_s() / period_s);
+    c.output = runner::Output::none;
 
     Fig8Result r;
     r.physics_hz = 1.0 / (o.physics.time_step * o.physics.steps_per_publish);
-    r.haptic_hz = 1.0 / loop.period_s();
-    const long ticks = std::lround(slide.trajectory.end_s() / loop.period_s());
-    r.rows.reserve(std::size_t(ticks));
-    for (long i = 0; i < ticks; ++i) {
-        session.advance(loop.period_s());
-        const haptics::HapticSample& h = loop.latest();
-        ForceLogRow row;
-        row.t_s = h.time_s;
-        row.local_model_N = h.force.along_N;
-        row.held_physics_N = h.physics_force_N;
-        row.physics_step = h.physics_step;
-        row.on_skin = h.time_s >= slide.on_skin_from_s && h.time_s <= slide.on_skin_to_s;
-        r.rows.push_back(row);
-    }
+    r.haptic_hz = 1.0 / period_s;
+    r.rows.reserve(std::size_t(c.max_steps));
+    c.observers.push_back(std::make_shared<Fig8Log>(r, slide));
+    for (auto& obs : observers) c.observers.push_back(std::move(obs));
+    runner::Runner runner(std::move(c));
+    runner.run();
     r.local_model = summarise(r.rows, &ForceLogRow::local_model_N);
     r.held_physics = summarise(r.rows, &ForceLogRow::held_physics_N);
     return r;

@@ -6,10 +6,12 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "device/trajectory.hpp"
+#include "runner/runner.hpp"
 #include "scene/leg.hpp"
 
 namespace echosim::app {
@@ -57,7 +59,10 @@ struct Fig8Result {
 };
 
 // Runs the script; physics_hz is the physics' rate (the paper's 100), the loop runs at 1 kHz.
-Fig8Result run_fig8(const SlideScript& script = {}, double physics_hz = 100.0);
+// It is the runner's configuration without a frame (runner/runner.hpp), one lock-step step per tick;
+// `observers` join the demo's own (tests count its steps).
+Fig8Result run_fig8(const SlideScript& script = {}, double physics_hz = 100.0,
+                    std::vector<std::shared_ptr<runner::Observer>> observers = {});
 
 // force_log.csv, force.png (both curves), summary.json in `dir` (made if missing). Throws
 // std::runtime_error naming the file it could not write.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -15,14 +16,11 @@
 #include "app/default_scene.hpp"
 #include "app/haptics_demo.hpp"
 #include "app/host_steal.hpp"
-#include "app/session_frame.hpp"
 #include "app/stop_signals.hpp"
 #include "app/volume_source.hpp"
 #include "device/scripted_device.hpp"
 #include "echo/case_volume.hpp"
-#include "gpu/command_pool.hpp"
-#include "gpu/offscreen.hpp"
-#include "io/png.hpp"
+#include "runner/runner.hpp"
 
 namespace echosim::app {
 namespace {
@@ -42,6 +40,67 @@ SoakBound bound(const char* name, double value, double limit, const char* unit, 
 {
     return {name, value, limit, unit, value <= limit, enforced};
 }
+
+// The soak's observer: before each step, a sample once a second (resident memory, frames, the
+// haptic loop's missed deadlines, the host's steal; the haptic periods of the seconds free of
+// steal merged into `steal_free`) and progress about every tenth of the run; the run ends, with a
+// last sample, when its time is up or a stop is asked for (a signal). Counts the frames drawn.
+class SoakSampler final : public runner::Observer {
+public:
+    SoakSampler(const SoakOptions& o, SoakResult& r, haptics::HapticLoop& loop, haptics::PeriodStats& steal_free)
+        : o_(o), r_(r), loop_(loop), steal_free_(steal_free), start_(std::chrono::steady_clock::now()),
+          progress_every_(std::max(5.0, 0.1 * o.seconds)), next_progress_(progress_every_)
+    {
+    }
+
+    bool should_stop() override
+    {
+        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        // a stop asked for (a signal) ends the run as its time would: a last sample, then out
+        const int signal = o_.stop_requested ? o_.stop_requested() : 0;
+        const bool end = t >= o_.seconds || signal != 0;
+        if (t >= next_sample_ || end) {
+            const haptics::PeriodStats h = loop_.stats();
+            const std::optional<double> steal = host_steal_s();
+            if (r_.samples.empty()) steal_at_start_ = steal;
+            const double stolen = steal && steal_at_start_ ? *steal - *steal_at_start_ : -1.0;  // -1: cannot be read
+            if (!r_.samples.empty()) {
+                const SoakSample& before = r_.samples.back();
+                if (!(stolen >= 0 && before.host_steal_s >= 0 && stolen > before.host_steal_s)) {
+                    steal_free_.merge(h.since(at_last_sample_));
+                    r_.steal_free_s += t - before.t_s;
+                }
+            }
+            at_last_sample_ = h;
+            r_.samples.push_back({t, resident_mib(), r_.frames, h.missed_deadlines, stolen});
+            next_sample_ = std::floor(t) + 1.0;
+            if (o_.progress && (t >= next_progress_ || end)) {
+                o_.progress({t, o_.seconds, r_.frames, r_.samples.back().rss_mib, r_.samples.back().haptic_missed});
+                next_progress_ += progress_every_;
+            }
+        }
+        if (end) {
+            r_.seconds = t;
+            r_.stopped_by_signal = signal;
+            // read while the loop runs: the session stops next
+            r_.haptic_memory_locked = loop_.memory_locked();
+            r_.haptic_cpu = loop_.cpu();
+        }
+        return end;
+    }
+    void on_step(runner::StepContext& step) override { step.want_frame(true); }  // every frame read back, as a recorder would
+    void on_frame(const runner::FrameContext& frame) override { r_.frames += frame.shown ? 1 : 0; }
+
+private:
+    const SoakOptions& o_;
+    SoakResult& r_;
+    haptics::HapticLoop& loop_;
+    haptics::PeriodStats& steal_free_;
+    haptics::PeriodStats at_last_sample_;
+    std::optional<double> steal_at_start_;  // read with the first sample
+    std::chrono::steady_clock::time_point start_;
+    double progress_every_, next_sample_ = 0, next_progress_;
+};
 
 }  // namespace
 
@@ -142,81 +201,41 @@ SoakResult run_soak_session(const SoakOptions& o)
     r.width = o.width;
     r.height = o.height;
     const scene::LegModel leg;  // the session's leg is made the same way
-    const VolumePair volumes = soak_volume(leg);
-    gpu::ContextOptions gpu = o.gpu;
-    gpu.validation = true;
+    const VolumePair volumes = o.volumes.volume ? o.volumes : soak_volume(leg);
+    // the soak is the runner's offscreen configuration on the real-time clock, every frame drawn
+    // and read back; what makes it a soak is its sampler (SoakSampler)
+    runner::RunnerConfig config;
+    config.name = "soak";
+    config.session.clock = session::Clock::real_time;
+    config.session.device = std::make_shared<device::ScriptedDevice>(make_round_trip_trajectory(leg), "the slide script, there and back",
+                                                                     device::ScriptedDevice::Playback::loop);
+    config.max_dt_s = std::numeric_limits<double>::infinity();  // the session's clock is the wall clock's anyway
+    config.output = runner::Output::offscreen;
+    config.gpu = o.gpu;
+    config.gpu.validation = true;
+    config.extent = {o.width, o.height};
+    config.volume = volumes.volume;
+    config.labels = volumes.labels;
+    config.observers = o.observers;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
-        gpu::Context ctx(gpu);
-        messages = ctx.validation_counter();
-        r.device = ctx.device_name();
-        session::SessionOptions so;
-        so.clock = session::Clock::real_time;
-        so.device = std::make_shared<device::ScriptedDevice>(make_round_trip_trajectory(leg), "the slide script, there and back",
-                                                             device::ScriptedDevice::Playback::loop);
-        DefaultScene scene(so);
-        r.haptic_priority = scene.session.haptics_note().empty() ? "SCHED_FIFO, CPUs kept awake" : scene.session.haptics_note();
-        gpu::CommandPool commands(ctx);  // this thread's
-        gpu::OffscreenPresenter presenter(commands, {o.width, o.height});
-        SessionFrame frame(ctx, commands, presenter.format(), scene, volumes);
-        haptics::HapticLoop& loop = *scene.session.haptic_loop();
+        runner::Runner runner(std::move(config));
+        messages = runner.validation_counter();
+        r.device = runner.context()->device_name();
+        session::Session& session = runner.session();
+        r.haptic_priority = session.haptics_note().empty() ? "SCHED_FIFO, CPUs kept awake" : session.haptics_note();
+        haptics::HapticLoop& loop = *session.haptic_loop();
         r.haptic_cpus_awake = loop.cpus_awake();
-        io::RgbaImage image;  // every frame read back into it (its pixels allocated once)
         r.samples.reserve(std::size_t(o.seconds) + 2);  // no growth of our own during the run
 
-        // The haptic periods of the seconds in which the host took no CPU time (the steal counter
-        // did not move from one sample to the next), for the bound that judges our loop, not the host.
-        haptics::PeriodStats steal_free, at_last_sample;
-        std::optional<double> steal_at_start;  // read with the first sample
-        Cyclictest cyclictest(o.seconds);  // beside the loop for the run, ended with it
-        loop.restart_window();             // the loop's latest tick over the same spell
-        const auto start = std::chrono::steady_clock::now();
-        auto last = start;
-        const double progress_every = std::max(5.0, 0.1 * o.seconds);
-        double next_sample = 0, next_progress = progress_every;
-        for (;;) {
-            const auto now = std::chrono::steady_clock::now();
-            const double t = std::chrono::duration<double>(now - start).count();
-            // a stop asked for (a signal) ends the run as its time would: a last sample, then out
-            const int signal = o.stop_requested ? o.stop_requested() : 0;
-            const bool end = t >= o.seconds || signal != 0;
-            if (t >= next_sample || end) {
-                const haptics::PeriodStats h = loop.stats();
-                const std::optional<double> steal = host_steal_s();
-                if (r.samples.empty()) steal_at_start = steal;
-                const double stolen = steal && steal_at_start ? *steal - *steal_at_start : -1.0;  // -1: cannot be read
-                if (!r.samples.empty()) {
-                    const SoakSample& before = r.samples.back();
-                    if (!(stolen >= 0 && before.host_steal_s >= 0 && stolen > before.host_steal_s)) {
-                        steal_free.merge(h.since(at_last_sample));
-                        r.steal_free_s += t - before.t_s;
-                    }
-                }
-                at_last_sample = h;
-                r.samples.push_back({t, resident_mib(), r.frames, h.missed_deadlines, stolen});
-                next_sample = std::floor(t) + 1.0;
-                if (o.progress && (t >= next_progress || end)) {
-                    o.progress({t, o.seconds, r.frames, r.samples.back().rss_mib, r.samples.back().haptic_missed});
-                    next_progress += progress_every;
-                }
-            }
-            if (end) {
-                r.seconds = t;
-                r.stopped_by_signal = signal;
-                break;
-            }
-            scene.session.advance(std::max(1e-4, std::chrono::duration<double>(now - last).count()));
-            last = now;
-            frame.set(scene, scene.session.view(), presenter.extent());
-            presenter.render(frame.passes(), &image);
-            ++r.frames;
-        }
-        r.haptic_memory_locked = loop.memory_locked();
-        r.haptic_cpu = loop.cpu();
-        // the session first (the device's force to zero before anything else), then cyclictest, so
-        // its spell covers the loop's to the end
-        scene.session.stop();
-        const physics::RunnerStats ps = scene.session.physics_stats();
+        // the haptic periods of the seconds in which the host took no CPU time go to `steal_free`
+        // (SoakSampler); cyclictest runs beside the loop for the run, ended with it
+        haptics::PeriodStats steal_free;
+        Cyclictest cyclictest(o.seconds);
+        loop.restart_window();  // the loop's latest tick over the same spell
+        runner.add_observer(std::make_shared<SoakSampler>(o, r, loop, steal_free));
+        runner.run();  // ends stopping the session: the device's force to zero before anything else
+        const physics::RunnerStats ps = session.physics_stats();
         r.physics_steps = ps.steps;
         r.physics_late_steps = ps.overruns;
         const haptics::PeriodStats h = loop.stats();
@@ -227,6 +246,7 @@ SoakResult run_soak_session(const SoakOptions& o)
         r.haptic_missed = h.missed_deadlines;
         r.haptic_late_max_ms = h.window_max_late_ms;
         r.page_faults = h.page_faults;
+        // then cyclictest, so its spell covers the loop's to the end
         const CyclictestResult floor = cyclictest.finish();
         r.cyclictest_max_ms = floor.max_ms;
         r.cyclictest_note = floor.note;
@@ -277,6 +297,7 @@ std::string soak_json(const SoakResult& r)
         // cyclictest beside the loop over the run: its latest wake-up, or null and why
         {"cyclictest_max_ms", r.cyclictest_max_ms ? nlohmann::json(*r.cyclictest_max_ms) : nlohmann::json(nullptr)},
         {"cyclictest_note", r.cyclictest_note},
+        // its thread on the loop's CPU, and each CPU's [ms]
         {"host_steal_s", r.host_steal_s},
         {"steal_free_s", r.steal_free_s},
         {"haptic_steal_free_periods", r.haptic_steal_free_periods},

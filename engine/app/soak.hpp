@@ -6,8 +6,9 @@
 //     stepping the 2,500-node patch at 1 kHz, both on the real-time clock, as in `echosim run`;
 //   - on the calling thread, frame after frame: the patch deformed from the latest physics step,
 //     the echographic image (deform, slice, post) made on the GPU from the same step, and the
-//     scene with the image beside it rendered offscreen and read back (app/session_frame.hpp),
-//     with the Khronos validation layer always on.
+//     scene with the image beside it rendered offscreen and read back, with the Khronos validation
+//     layer always on: the runner's offscreen configuration on the real-time clock
+//     (runner/runner.hpp), the sampling below its observer.
 // Resident memory (/proc/self/statm) is sampled once a second. The run is judged by the bounds
 // below (the help text, the JSON and the README quote them): memory after a warm-up, validation
 // messages, and the haptic loop's deadlines (DESIGN.md §5).
@@ -15,12 +16,15 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "app/volume_source.hpp"
 #include "gpu/context.hpp"
+#include "runner/runner.hpp"
 
 namespace echosim::app {
 
@@ -148,6 +152,11 @@ struct SoakOptions {
     // Looked at once a frame: a signal's number (app/stop_signals.hpp) ends the run there, in order
     // (the session stopped, the device sent a zero force, the run judged as far as it went); 0 goes on.
     std::function<int()> stop_requested;
+    // The echographic volume; none (the default): the healthy case's, made coarse (0.6 mm) for the run.
+    VolumePair volumes;
+    // More observers of the runner the soak is a configuration of (runner/runner.hpp): tests count
+    // its steps.
+    std::vector<std::shared_ptr<runner::Observer>> observers;
 };
 
 // Runs the soak (a few seconds of set-up, then `seconds` of session, or until stop_requested says

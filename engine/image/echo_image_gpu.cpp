@@ -69,6 +69,34 @@ std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
     return out;
 }
 
+// The frame's stages as a list of sub-passes that declare what they read and write
+// (gpu/stage_list.hpp), so the barriers between them are the recorder's, not each stage's:
+//
+//   deform: solve ─▶ deform: map ─▶ slice+post ─▶ display copy ─▶ [read-back copy]
+//
+// The resources are a slot's (each frame slot has its own); the profile, the parameters and the
+// rows are host-written before the frame is submitted, so no stage declares them.
+enum Resource { kSolved, kMap, kSliced, kImage, kReadback };
+enum StageIndex { kSolve, kMapStage, kSlice, kDisplayCopy, kReadbackCopy };
+
+gpu::StageList frame_stages(std::uint32_t map_reads)
+{
+    constexpr auto compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, copy = VK_PIPELINE_STAGE_2_COPY_BIT;
+    constexpr auto storage_write = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    // the deform's map pass reads the solve's outputs through texel views (a CPU device) or as storage
+    const VkAccessFlags2 solved_read = map_reads != 0u ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    return gpu::StageList(
+        {{"the deform's solution (scratch, displacements, wall distances)"}, {"the deform map"},
+         {"the sliced bytes, grey levels and labels"}, {"the displayed image", true}, {"the read-back buffer"}},
+        {{"deform: solve", {}, {{kSolved, compute, storage_write}}},
+         {"deform: map", {{kSolved, compute, solved_read}}, {{kMap, compute, storage_write}}},
+         {"slice+post", {{kMap, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT}}, {{kSliced, compute, storage_write}}},
+         {"display copy", {{kSliced, copy, VK_ACCESS_2_TRANSFER_READ_BIT}},
+          {{kImage, copy, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, true}}},
+         {"read-back copy", {{kImage, copy, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL}},
+          {{kReadback, copy, VK_ACCESS_2_TRANSFER_WRITE_BIT}}}});
+}
+
 template <class T>
 std::span<const std::byte> bytes_of(const T& value)
 {
@@ -122,6 +150,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
       map_reads_(reads == DeformReads::texels || (reads == DeformReads::best && ctx.device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU)
                      ? DEFORM_TEXEL_READS
                      : 0u),
+      stages_(frame_stages(map_reads_)),
       tissues_(ctx, sizeof(echo::TissueTable), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible),
       deform_(ctx, kernels::deform_comp, "deform.comp",
               {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
@@ -220,54 +249,48 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     auto* rows = static_cast<kernels::PostRow*>(slot.rows.mapped());
     for (std::uint32_t r = 0; r < plane_.rows; ++r) rows[r] = kernels::post_row(r, k.post);
 
-    if (warped && stages != Stages::slice_only) {
-        slot.profile.write(std::as_bytes(std::span(profiles)));
-        // the columns solved, then mapped with their neighbours' solutions
-        const gpu::Groups columns = gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE);
-        deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_SOLVE);
-        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            map_reads_ != 0u ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-        deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP | map_reads_);
-        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }
-    if (stages == Stages::deform_only) return;
-    const VkExtent2D runs{kernels::slice_runs(plane_.columns), plane_.rows};
-    slice_.record(cmd, slot_index, {}, gpu::Groups::cover(runs, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}), k.slice.flags);
-    if (!all) return;
-
-    // the packed bytes into the displayed image (its last contents are not needed)
-    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_TRANSFER_READ_BIT);
-    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy from_words{};
-    from_words.bufferRowLength = kernels::slice_words(plane_.columns) * 4;  // bytes: R8 texels
-    from_words.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    from_words.imageExtent = {plane_.columns, plane_.rows, 1};
-    vkCmdCopyBufferToImage(cmd, slot.display.handle(), slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &from_words);
-
+    std::uint32_t active = 0;
+    if (warped && stages != Stages::slice_only) active |= 1u << kSolve | 1u << kMapStage;
+    if (stages != Stages::deform_only) active |= 1u << kSlice;
+    if (all) active |= 1u << kDisplayCopy | (readback_enabled_ ? 1u << kReadbackCopy : 0u);
+    const std::array<VkImage, 5> images{VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, slot.image.handle(), VK_NULL_HANDLE};
+    // the displayed image handed on to its reader: the panel's fragment shader, or a copy
     const bool to_transfer = final_layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    const VkPipelineStageFlags2 reader = to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    const VkAccessFlags2 read = to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
-    if (!readback_enabled_) {
-        gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout,
-                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, reader, read);
-        return;
-    }
-    // the live read-back: the image to the slot's host buffer, then on to its reader
-    gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy to_buffer{};
-    to_buffer.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    to_buffer.imageExtent = {plane_.columns, plane_.rows, 1};
-    vkCmdCopyImageToBuffer(cmd, slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, slot.readback.handle(), 1, &to_buffer);
-    gpu::host_read_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    if (!to_transfer)  // the copy only read the image: its reader need wait for the copy, no memory to make visible
-        gpu::transition(cmd, slot.image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, final_layout,
-                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, reader, read);
+    const gpu::StageAccess reader{kImage, to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                  to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, final_layout};
+    const gpu::Groups columns = gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE);
+    stages_.record(cmd, active, images, std::span(&reader, 1), [&](std::size_t stage) {
+        switch (stage) {
+        case kSolve:  // the columns solved...
+            slot.profile.write(std::as_bytes(std::span(profiles)));
+            deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_SOLVE);
+            break;
+        case kMapStage:  // ...then mapped with their neighbours' solutions
+            deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP | map_reads_);
+            break;
+        case kSlice: {
+            const VkExtent2D runs{kernels::slice_runs(plane_.columns), plane_.rows};
+            slice_.record(cmd, slot_index, {}, gpu::Groups::cover(runs, VkExtent2D{SLICE_GROUP_X, SLICE_GROUP_Y}), k.slice.flags);
+            break;
+        }
+        case kDisplayCopy: {  // the packed bytes into the displayed image (its last contents are not needed)
+            VkBufferImageCopy from_words{};
+            from_words.bufferRowLength = kernels::slice_words(plane_.columns) * 4;  // bytes: R8 texels
+            from_words.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            from_words.imageExtent = {plane_.columns, plane_.rows, 1};
+            vkCmdCopyBufferToImage(cmd, slot.display.handle(), slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &from_words);
+            break;
+        }
+        case kReadbackCopy: {  // the live read-back: the image to the slot's host buffer, read once the slot's fence has signalled
+            VkBufferImageCopy to_buffer{};
+            to_buffer.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            to_buffer.imageExtent = {plane_.columns, plane_.rows, 1};
+            vkCmdCopyImageToBuffer(cmd, slot.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, slot.readback.handle(), 1, &to_buffer);
+            gpu::host_read_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            break;
+        }
+        }
+    });
 }
 
 void EchoImageGpu::enable_readback(const gpu::Context& ctx)

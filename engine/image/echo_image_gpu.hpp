@@ -1,11 +1,13 @@
 // The echographic image pipeline on the GPU (DESIGN.md §1): deform ▶ slice ▶ post, the kernels of
-// compute/ (deform.comp, then slice.comp, which runs the post stage on each sample), from a volume
+// compute/ (deform.comp, then slice.comp, which runs the post stage on each sample), recorded as a
+// list of stages that declare what they read and write, the barriers between them placed by one
+// recorder (gpu/stage_list.hpp; the list in echo_image_gpu.cpp), from a volume
 // and its labels held on the GPU as 3-D images to the displayed image, with no round trip through
 // host memory. Per frame the host hands over only the frame's
 // small input (the probe's pose and, per image column, the skin's indentation: echo::EchoFrame).
 //
 // Two uses, one set of kernels:
-//   - live, recorded into the window's frame by a pass before the image panel (app/echo_image_pass:
+//   - live, recorded into the window's frame by a pass before the image panel (runner/echo_image_pass:
 //     record() for the frame's slot, then the panel shows image(slot));
 //   - offscreen (render()): one frame, waited for and read back, for `echosim slice`, the tests
 //     and the benchmark.
@@ -40,6 +42,7 @@
 #include "gpu/compute.hpp"
 #include "gpu/frame.hpp"
 #include "gpu/resources.hpp"
+#include "gpu/stage_list.hpp"
 #include "io/nrrd.hpp"
 
 namespace echosim::image {
@@ -93,6 +96,7 @@ public:
                  const echo::PatientCase& patient, DeformReads reads = DeformReads::best);
 
     const echo::ImagePlane& plane() const { return plane_; }
+    const io::Volume& volume_grid() const { return volume_->grid(); }  // the volume's geometry (no voxels)
     echo::ScannerSettings& scanner() { return scanner_; }
 
     // Records the frame's three stages into `cmd` for frame slot `slot`, leaving the slot's image in
@@ -138,6 +142,7 @@ private:
     std::uint32_t max_steps_ = 0;
     std::uint32_t map_columns_ = 0;  // the deform stage's columns (echo::deform_columns)
     std::uint32_t map_reads_ = 0;    // DEFORM_TEXEL_READS or 0: the map pass's variant bit
+    gpu::StageList stages_;          // the frame's stages and what each reads and writes (echo_image_gpu.cpp)
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
     std::array<Slot, gpu::kFramesInFlight> slots_;

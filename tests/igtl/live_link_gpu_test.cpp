@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include "app/echo_image_pass.hpp"
 #include "app/live_link.hpp"
 #include "echo/echo_test_volumes.hpp"
 #include "gpu/command_pool.hpp"
@@ -17,6 +16,7 @@
 #include "igtl/server.hpp"
 #include "image/echo_image_gpu.hpp"
 #include "render/image_panel_pass.hpp"
+#include "runner/echo_image_pass.hpp"
 #include "session/session.hpp"
 #include "test_gpu.hpp"
 
@@ -64,7 +64,7 @@ TEST(IgtlLiveLink, PublishesTheImageTheGpuDrewWhereItsProbeWas)
         gpu::OffscreenPresenter presenter(pool, {96, 64});
         render::ImagePanelPass panel(ctx, presenter.format(), {});
         const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
-        app::EchoImagePass pass(pipeline, panel, nearest);
+        runner::EchoImagePass pass(pipeline, panel, nearest);
         LiveFrame live;
         pass.enable_readback(ctx, [&](const echo::EchoFrame& frame, std::span<const std::uint8_t> grey, double wall_clock_s) {
             app::fill_live_frame(live, plane, frame, grey, wall_clock_s);

@@ -19,7 +19,7 @@
 #include "image/echo_image_gpu.hpp"
 #include "render/image_panel_pass.hpp"
 
-namespace echosim::app {
+namespace echosim::runner {
 
 class EchoImagePass final : public gpu::FramePass {
 public:
@@ -79,4 +79,4 @@ private:
     std::array<Drawn, gpu::kFramesInFlight> drawn_;
 };
 
-}  // namespace echosim::app
+}  // namespace echosim::runner

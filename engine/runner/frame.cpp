@@ -1,0 +1,62 @@
+#include "runner/frame.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace echosim::runner {
+
+render::TargetRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& plane)
+{
+    const float aspect = float(plane.width_mm / plane.depth_mm) * float(frame.height) / float(std::max(frame.width, 1u));
+    const float width = std::min(aspect, 0.5f);
+    const float height = width / aspect;
+    return {1.0f - width, 0.5f * (1.0f - height), width, height};
+}
+
+SimulatorFrame::SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& commands, VkFormat format, const DefaultScene& scene,
+                               const io::Volume& volume, const io::Volume* labels, std::span<const PassFactory> extra)
+    : scene_pass_(ctx, commands, format, scene.meshes()),
+      echo_image_(ctx, std::make_shared<const image::EchoVolumeGpu>(commands, volume, labels), scene.session.image_plane(),
+                  scene.session.patient()),
+      smooth_(ctx, gpu::Filter::linear), panel_(ctx, format, {}), echo_pass_(echo_image_, panel_, smooth_), cue_pass_(commands, format)
+{
+    const PassSetup setup{ctx, commands, format, scene};
+    std::vector<std::pair<PassPlace, gpu::FramePass*>> made;
+    for (const PassFactory& f : extra) {
+        if (!f.make) throw std::invalid_argument("frame: a configuration's pass has no factory");
+        extra_.push_back(f.make(setup));
+        if (!extra_.back()) throw std::invalid_argument("frame: a configuration's pass factory made no pass");
+        made.emplace_back(f.place, extra_.back().get());
+    }
+    const auto add = [&](PassPlace place) {
+        for (const auto& [p, pass] : made)
+            if (p == place) order_.push_back(pass);
+    };
+    order_.push_back(&scene_pass_);
+    add(PassPlace::after_scene);
+    order_.push_back(&echo_pass_);
+    add(PassPlace::image);
+    order_.push_back(&panel_);
+    order_.push_back(&cue_pass_);
+    add(PassPlace::overlay);
+    passes_.emplace(std::span<gpu::FramePass* const>(order_));
+}
+
+std::vector<std::string> SimulatorFrame::pass_names() const
+{
+    std::vector<std::string> names;
+    for (const gpu::FramePass* p : order_) names.emplace_back(p->name());
+    return names;
+}
+
+void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& state, VkExtent2D extent)
+{
+    scene_pass_.set_view(scene.frame_view(state));
+    echo_pass_.set_frame(*state.echo);
+    const render::TargetRect panel = echo_panel_rect(extent, scene.session.image_plane());
+    panel_.set_rect(panel);
+    scene_pass_.set_area({0.0f, 0.0f, panel.x, 1.0f});
+    cue_pass_.set(image_cue(*state.echo, scene.session.image_plane(), echo_image_.volume_grid()), panel, extent);
+}
+
+}  // namespace echosim::runner

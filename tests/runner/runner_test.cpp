@@ -1,0 +1,346 @@
+// The runner (runner/runner.hpp): every configuration (exam, soak, haptics-demo; `run` in the
+// window smoke test and the build check one_loop.cmake) steps through Runner::step, counted by an
+// observer; the exam's frames are the same bytes run after run; the frame's passes come in their
+// order and a configuration extends them; the image panel says when there is nothing to image.
+// GPU tests on lavapipe with validation on (test_gpu.hpp): any message fails them.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/haptics_demo.hpp"
+#include "app/soak.hpp"
+#include "echo/echo_test_volumes.hpp"
+#include "io/png.hpp"
+#include "runner/exam_config.hpp"
+#include "runner/image_cue.hpp"
+#include "runner/recorders.hpp"
+#include "runner/runner.hpp"
+#include "test_gpu.hpp"
+
+namespace echosim {
+namespace {
+
+// Counts what the runner hands its observers.
+struct StepCounter final : runner::Observer {
+    runner::Runner* attached = nullptr;
+    std::int64_t steps = 0, frames = 0, finishes = 0, last_step = -1;
+    bool in_order = true;
+    void on_attach(runner::Runner& r) override { attached = &r; }
+    void on_step(runner::StepContext& step) override
+    {
+        in_order = in_order && step.step == last_step + 1;
+        last_step = step.step;
+        ++steps;
+    }
+    void on_frame(const runner::FrameContext& frame) override { frames += frame.shown ? 1 : 0; }
+    void on_finish(const runner::FinishContext& end) override
+    {
+        ++finishes;
+        in_order = in_order && end.steps == steps;
+    }
+};
+
+struct TestVolumes {
+    std::shared_ptr<const io::Volume> grey, labels;
+};
+TestVolumes small_volume()
+{
+    const scene::LegModel leg;
+    test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, leg.probe_rest_pose(0.5f, 0.5f), 0.6);
+    return {std::make_shared<const io::Volume>(std::move(v.grey)), std::make_shared<const io::Volume>(std::move(v.labels))};
+}
+
+std::string file_bytes(const std::filesystem::path& p)
+{
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// A probe placed by the test before each advance: resting at `rest`, pressed towards `press_mm`
+// by at most 0.5 mm a step (30 mm/s at 60 steps a second: a hand's pace).
+struct PlaceProbe final : runner::Input {
+    Pose rest;
+    double press_mm = 0;
+    double now_mm = 0;
+    bool poll(runner::Runner& r, double) override
+    {
+        now_mm = std::min(press_mm, now_mm + 0.5);
+        r.session().place_probe({rest, now_mm});
+        return true;
+    }
+};
+
+runner::ExamOptions small_exam(const TestVolumes& v)
+{
+    runner::ExamOptions o;
+    o.volume = v.grey;
+    o.labels = v.labels;
+    o.gpu = test::lavapipe_options();
+    o.extent = {192, 108};
+    return o;
+}
+
+TEST(RunnerConfigurations, TheExamStepsThroughTheRunnerAndWritesFramesAtItsRate)
+{
+    const TestVolumes v = small_volume();
+    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "runner_exam_rate";
+    std::filesystem::remove_all(dir);
+    auto counter = std::make_shared<StepCounter>();
+    std::vector<std::filesystem::path> written;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        runner::ExamOptions o = small_exam(v);
+        o.duration_s = 0.1;  // 6 steps of 1/60 s
+        o.frames_per_s = 30;
+        o.frames_dir = dir;
+        o.observers.push_back(counter);
+        runner::Runner r(runner::exam_config(std::move(o)));
+        messages = r.validation_counter();
+        EXPECT_EQ(counter->attached, &r);
+        EXPECT_EQ(r.session().clock(), session::Clock::lock_step);
+        r.run();
+        EXPECT_FALSE(r.step());  // ended, and stays so
+        EXPECT_EQ(r.steps(), 6);
+        EXPECT_NEAR(r.session().time(), 0.1, 1e-9);
+        // frame k at the first step at or after k/30 s (steps end at 1/60, 2/60, ... 6/60 s): at
+        // 1/60, 2/60, 4/60 and 6/60 s; drawn only when the recorder asks
+        EXPECT_EQ(r.frames(), 4);
+    }
+    EXPECT_EQ(counter->steps, 6);
+    EXPECT_EQ(counter->frames, 4);
+    EXPECT_EQ(counter->finishes, 1);
+    EXPECT_TRUE(counter->in_order);
+    for (int k = 0; k < 4; ++k) {
+        const io::RgbaImage png = io::read_png(dir / runner::FrameRecorder::file_name(k));
+        EXPECT_EQ(png.width, 192u);
+        EXPECT_EQ(png.height, 108u);
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / runner::FrameRecorder::file_name(4)));
+    EXPECT_EQ(messages->load(), 0u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(RunnerConfigurations, TheHapticsDemoStepsThroughTheRunnerOneStepATick)
+{
+    app::SlideScript script;
+    script.approach_s = 0.05;
+    script.hold_s = 0.02;
+    script.slide_s = 0.1;
+    auto counter = std::make_shared<StepCounter>();
+    const app::Fig8Result r = app::run_fig8(script, 100.0, {counter});
+    ASSERT_GT(r.rows.size(), 100u);
+    EXPECT_EQ(counter->steps, std::int64_t(r.rows.size()));  // one row a step, each made in the runner's step
+    EXPECT_EQ(counter->frames, 0);                           // no frame: no GPU
+    EXPECT_EQ(counter->finishes, 1);
+    EXPECT_TRUE(counter->in_order);
+    EXPECT_NEAR(r.rows.back().t_s, double(r.rows.size()) * 1e-3, 1e-9);  // lock-step, a tick a step
+}
+
+TEST(RunnerConfigurations, TheSoakStepsThroughTheRunnerEveryStepAFrame)
+{
+    app::SoakOptions o;
+    o.seconds = 0.5;
+    o.gpu = test::lavapipe_options();
+    o.width = 160;
+    o.height = 96;
+    o.deadlines = app::DeadlineCheck::report;
+    const TestVolumes v = small_volume();
+    o.volumes = {v.grey, v.labels, "the test volume"};
+    auto counter = std::make_shared<StepCounter>();
+    o.observers.push_back(counter);
+    const app::SoakResult r = app::run_soak_session(o);
+    ASSERT_GT(r.frames, 0);
+    EXPECT_EQ(counter->frames, r.frames);
+    EXPECT_EQ(counter->steps, r.frames);  // a frame every step, offscreen, never skipped
+    EXPECT_EQ(counter->finishes, 1);
+    EXPECT_TRUE(counter->in_order);
+    EXPECT_EQ(r.validation_messages, 0u);
+    EXPECT_FALSE(r.samples.empty());
+}
+
+TEST(Runner, RefusesAConfigurationItCannotRunNamingTheField)
+{
+    runner::RunnerConfig c;
+    c.lock_step_dt_s = 0;
+    try {
+        runner::Runner r(c);
+        ADD_FAILURE() << "a zero step was taken";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("lock_step_dt_s"), std::string::npos) << e.what();
+    }
+    runner::RunnerConfig frame;
+    frame.output = runner::Output::offscreen;
+    try {
+        runner::Runner r(frame);
+        ADD_FAILURE() << "a frame without a volume was made";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("volume"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(runner::exam_config({}), std::invalid_argument);  // no trajectory, no duration
+}
+
+// A pass a configuration adds: draws nothing, names itself.
+struct NamedPass final : gpu::FramePass {
+    explicit NamedPass(const char* n) : n_(n) {}
+    const char* name() const override { return n_; }
+    gpu::TargetUse target_use() const override { return gpu::TargetUse::none(); }
+    void record(const gpu::PassContext&) override { ++recorded; }
+    const char* n_;
+    int recorded = 0;
+};
+
+TEST(Runner, TheFramesPassesComeInOrderAndAConfigurationExtendsThem)
+{
+    const TestVolumes v = small_volume();
+    runner::ExamOptions o = small_exam(v);
+    o.duration_s = 2.0 / 60.0;
+    runner::RunnerConfig c = runner::exam_config(std::move(o));
+    NamedPass* ui = nullptr;
+    const auto make = [](const char* name, NamedPass** keep) {
+        return [name, keep](const runner::PassSetup&) {
+            auto p = std::make_unique<NamedPass>(name);
+            if (keep) *keep = p.get();
+            return std::unique_ptr<gpu::FramePass>(std::move(p));
+        };
+    };
+    c.passes.push_back({runner::PassPlace::overlay, make("ui", &ui)});
+    c.passes.push_back({runner::PassPlace::image, make("b-mode", nullptr)});
+    c.passes.push_back({runner::PassPlace::after_scene, make("probe shadow", nullptr)});
+    c.drawing = runner::Drawing::every_step;
+    runner::Runner r(std::move(c));
+    const std::vector<std::string> expected{"scene", "probe shadow", "echographic image", "b-mode", "image panel", "image cue", "ui"};
+    EXPECT_EQ(r.frame()->pass_names(), expected);
+    r.run();
+    ASSERT_NE(ui, nullptr);
+    EXPECT_EQ(ui->recorded, 2);  // a frame each step
+}
+
+TEST(ImageCue, OffTheVolumeNoContactOrNone)
+{
+    const TestVolumes v = small_volume();
+    const scene::LegModel leg;
+    const echo::ImagePlane plane;
+    echo::EchoFrame f;
+    f.face = leg.probe_rest_pose(0.5f, 0.5f);
+    EXPECT_EQ(runner::image_cue(f, plane, *v.grey), runner::ImageCue::no_contact);  // nothing pressed
+    f.columns.assign(plane.columns, echo::ColumnProfile{});
+    EXPECT_EQ(runner::image_cue(f, plane, *v.grey), runner::ImageCue::none);
+    f.face.position += glm::vec3(f.face.axis_z()) * 30.0f;  // slid 30 mm along the thigh, off the test volume (+-4 mm)
+    EXPECT_EQ(runner::image_cue(f, plane, *v.grey), runner::ImageCue::outside_region);
+    EXPECT_STREQ(runner::cue_text(runner::ImageCue::no_contact).headline, "NO CONTACT");
+    EXPECT_STREQ(runner::cue_text(runner::ImageCue::outside_region).headline, "OUTSIDE THE MODELLED REGION");
+}
+
+// How many of the frame's pixels inside `rect` are the banner's amber (255, 190, 40).
+int amber_pixels(const io::RgbaImage& image, const render::TargetRect& rect)
+{
+    const VkRect2D px = render::target_pixels(rect, {image.width, image.height});
+    int n = 0;
+    for (std::uint32_t y = std::uint32_t(px.offset.y); y < std::uint32_t(px.offset.y) + px.extent.height; ++y)
+        for (std::uint32_t x = std::uint32_t(px.offset.x); x < std::uint32_t(px.offset.x) + px.extent.width; ++x) {
+            const std::uint8_t* p = image.at(x, y);
+            n += p[0] > 200 && p[1] > 140 && p[1] < 230 && p[2] < 90 ? 1 : 0;
+        }
+    return n;
+}
+
+// Keeps the last frame's pixels.
+struct KeepFrame final : runner::Observer {
+    io::RgbaImage last;
+    void on_step(runner::StepContext& step) override { step.want_frame(true); }
+    void on_frame(const runner::FrameContext& f) override
+    {
+        if (f.pixels) last = *f.pixels;
+    }
+};
+
+TEST(Runner, ThePanelSaysNoContactOffTheSkinAndNothingWhilePressing)
+{
+    const TestVolumes v = small_volume();
+    const scene::LegModel leg;
+    runner::ExamOptions o = small_exam(v);
+    o.extent = {480, 270};
+    o.duration_s = 1.0;
+    auto place = std::make_shared<PlaceProbe>();
+    const Pose rest = leg.probe_rest_pose(0.5f, 0.5f);
+    place->rest = pressed_along_beam(rest, -8.0);  // 8 mm above the skin
+    o.input = place;
+    auto keep = std::make_shared<KeepFrame>();
+    o.observers.push_back(keep);
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    // ECHOSIM_RUNNER_FRAMES=DIR keeps the two frames to look at
+    const char* keep_dir = std::getenv("ECHOSIM_RUNNER_FRAMES");
+    {
+        runner::Runner r(runner::exam_config(std::move(o)));
+        messages = r.validation_counter();
+        for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.step());
+        EXPECT_EQ(r.frame()->cue(), runner::ImageCue::no_contact);
+        const render::TargetRect panel = runner::echo_panel_rect({480, 270}, r.session().image_plane());
+        const io::RgbaImage lifted = keep->last;
+        EXPECT_GT(amber_pixels(lifted, panel), 200);  // the banner's frame and headline
+        if (keep_dir) io::write_png(std::filesystem::path(keep_dir) / "h6_no_contact.png", lifted);
+
+        place->rest = rest;
+        place->press_mm = 8.0;
+        for (int i = 0; i < 30; ++i) ASSERT_TRUE(r.step());
+        EXPECT_EQ(r.frame()->cue(), runner::ImageCue::none);
+        EXPECT_GT(r.session().view().probe_force_N, 0.5);
+        EXPECT_EQ(amber_pixels(keep->last, panel), 0);  // the echo image alone
+        if (keep_dir) io::write_png(std::filesystem::path(keep_dir) / "h6_pressing.png", keep->last);
+
+        // slid along the thigh past the volume (the test volume is 8 mm thick): the other cue
+        place->rest = leg.probe_rest_pose(0.6f, 0.5f);
+        for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.step());
+        EXPECT_EQ(r.frame()->cue(), runner::ImageCue::outside_region);
+        EXPECT_GT(amber_pixels(keep->last, panel), 200);
+        if (keep_dir) io::write_png(std::filesystem::path(keep_dir) / "h6_outside.png", keep->last);
+    }
+    EXPECT_EQ(messages->load(), 0u);
+}
+
+TEST(Runner, TwoExamRunsWriteTheSameFrameBytes)
+{
+    const TestVolumes v = small_volume();
+    const scene::LegModel leg;
+    app::SlideScript script;  // down onto the thigh, pressing 6 mm in, sliding across it, lifting
+    script.approach_s = 0.15;
+    script.hold_s = 0.05;
+    script.slide_s = 0.2;
+    script.v_from = 0.45;
+    script.v_to = 0.55;
+    const app::SlideTrajectory slide = app::make_slide_trajectory(leg, script);
+    const std::filesystem::path base = std::filesystem::path(testing::TempDir()) / "runner_repeat";
+    std::filesystem::remove_all(base);
+    std::vector<std::vector<std::string>> runs;
+    for (int run = 0; run < 2; ++run) {
+        runner::ExamOptions o = small_exam(v);
+        o.trajectory = slide.trajectory;
+        o.frames_per_s = 10;
+        o.frames_dir = base / std::to_string(run);
+        runner::Runner r(runner::exam_config(std::move(o)));
+        r.run();
+        EXPECT_EQ(r.validation_counter()->load(), 0u);
+        std::vector<std::string> bytes;
+        for (int k = 0;; ++k) {
+            const std::filesystem::path f = base / std::to_string(run) / runner::FrameRecorder::file_name(k);
+            if (!std::filesystem::exists(f)) break;
+            bytes.push_back(file_bytes(f));
+        }
+        runs.push_back(std::move(bytes));
+    }
+    ASSERT_GE(runs[0].size(), 6u);  // 0.6 s at 10 frames a simulated second
+    ASSERT_EQ(runs[0].size(), runs[1].size());
+    for (std::size_t k = 0; k < runs[0].size(); ++k) EXPECT_TRUE(runs[0][k] == runs[1][k]) << "frame " << k << " differs";
+    EXPECT_NE(runs[0].front(), runs[0][runs[0].size() / 2]);  // the probe moved: the frames are not all one
+    std::filesystem::remove_all(base);
+}
+
+}  // namespace
+}  // namespace echosim
