@@ -72,7 +72,9 @@ void haptic_loop_timing(benchmark::State& state, const gpu::ContextOptions& gpu,
         state.counters["memory_locked"] = memory_locked ? 1 : 0;
         state.counters["cpu"] = loop.cpu();
         if (floor.max_ms) {
-            state.counters["cyclictest_max_ms"] = *floor.max_ms;
+            state.counters["cyclictest_max_ms"] = *floor.max_ms;  // the worst of its threads, one pinned on each CPU
+            // its thread on the loop's CPU: the like-for-like floor (app/cyclictest.hpp)
+            if (const std::optional<double> own = floor.max_on(loop.cpu())) state.counters["cyclictest_loop_cpu_max_ms"] = *own;
             // the goal: the loop's latest tick no later than the machine's floor (<= 0)
             state.counters["late_over_cyclictest_ms"] = s.window_max_late_ms - *floor.max_ms;
         } else {

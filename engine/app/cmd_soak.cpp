@@ -45,8 +45,23 @@ int run_soak(const SoakArgs& args)
                 r.haptic_p50_ms, r.haptic_p99_ms, r.haptic_max_ms, r.haptic_missed, r.validation_messages);
     std::printf("echosim soak: haptic loop's latest tick %.3f ms after its deadline, %lld page faults after its start (memory %s)\n",
                 r.haptic_late_max_ms, r.page_faults, r.haptic_memory_locked ? "locked" : "not locked");
-    if (r.cyclictest_max_ms)
-        std::printf("echosim soak: cyclictest beside it (the machine's floor): latest wake-up %.3f ms\n", *r.cyclictest_max_ms);
+    if (const haptics::WorstTick& w = r.haptic_worst; w.late_ms >= 0) {
+        char wait[96];
+        if (w.slept)
+            std::snprintf(wait, sizeof wait, "its sleep returned %.1f us after the time asked, spin %.1f us", w.sleep_late_us, w.spin_us);
+        else
+            std::snprintf(wait, sizeof wait, "no sleep (the work ended past the sleep's time), spin %.1f us", w.spin_us);
+        std::printf("echosim soak:   that tick (%.3f s into the loop): the one before it took %.1f us (read %.1f, force %.1f, write %.1f, "
+                    "hand-offs %.1f, bookkeeping %.1f), then %s; CPU %d -> %d; %ld voluntary, %ld involuntary switches; ran %.3f of %.3f ms\n",
+                    w.at_s, w.before_us + w.read_us + w.force_us + w.write_us + w.handoff_us + w.after_us, w.read_us, w.force_us, w.write_us,
+                    w.handoff_us, w.before_us + w.after_us, wait, w.cpu_before, w.cpu_after, w.voluntary_switches, w.involuntary_switches,
+                    w.ran_ms, w.spell_ms);
+    }
+    if (r.cyclictest_max_ms) {
+        std::printf("echosim soak: cyclictest beside it (the machine's floor, a thread on each CPU): latest wake-up %.3f ms", *r.cyclictest_max_ms);
+        if (r.cyclictest_loop_cpu_max_ms) std::printf("; on the loop's CPU %d: %.3f ms", r.haptic_cpu, *r.cyclictest_loop_cpu_max_ms);
+        std::printf("\n");
+    }
     else
         std::printf("echosim soak: cyclictest beside it: no figure (%s)\n", r.cyclictest_note.c_str());
     if (r.host_steal_s < 0)

@@ -245,11 +245,14 @@ SoakResult run_soak_session(const SoakOptions& o)
         r.haptic_max_ms = h.max_error_ms;
         r.haptic_missed = h.missed_deadlines;
         r.haptic_late_max_ms = h.window_max_late_ms;
+        r.haptic_worst = h.worst;
         r.page_faults = h.page_faults;
         // then cyclictest, so its spell covers the loop's to the end
         const CyclictestResult floor = cyclictest.finish();
         r.cyclictest_max_ms = floor.max_ms;
         r.cyclictest_note = floor.note;
+        r.cyclictest_loop_cpu_max_ms = floor.max_on(loop.cpu());
+        for (const CyclictestCpu& c : floor.cpus) r.cyclictest_cpus.emplace_back(c.cpu, c.max_ms);
         r.host_steal_s = r.samples.back().host_steal_s;
         r.haptic_steal_free_periods = steal_free.periods;
         r.haptic_steal_free_p99_ms = steal_free.error_quantile_ms(0.99);
@@ -260,6 +263,42 @@ SoakResult run_soak_session(const SoakOptions& o)
     r.bounds = judge_soak(r, o.deadlines);
     return r;
 }
+
+namespace {
+
+// the loop's latest tick, taken apart (haptics::WorstTick), [us] rounded to 0.1 us
+nlohmann::json worst_tick_json(const haptics::WorstTick& w)
+{
+    const auto us = [](double v) { return std::round(v * 10.0) / 10.0; };
+    nlohmann::json before = nlohmann::json::array();
+    for (float v : w.late_before_us) before.push_back(us(v));
+    return {{"late_ms", w.late_ms},
+            {"tick", w.tick},
+            {"loop_s", w.at_s},
+            {"monotonic_s", w.monotonic_s},
+            {"spell_ms", w.spell_ms},
+            {"tick_before_us",
+             {{"bookkeeping", us(w.before_us)}, {"device_read", us(w.read_us)}, {"force", us(w.force_us)}, {"device_write", us(w.write_us)},
+              {"handoffs", us(w.handoff_us)}, {"after", us(w.after_us)}}},
+            {"slept", w.slept},
+            {"sleep_late_us", us(w.sleep_late_us)},
+            {"spin_us", us(w.spin_us)},
+            {"cpu_before", w.cpu_before},
+            {"cpu_after", w.cpu_after},
+            {"voluntary_switches", w.voluntary_switches},
+            {"involuntary_switches", w.involuntary_switches},
+            {"ran_ms", w.ran_ms},
+            {"late_before_us", before}};
+}
+
+nlohmann::json cyclictest_cpus_json(const std::vector<std::pair<int, double>>& cpus)
+{
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& [cpu, max_ms] : cpus) j.push_back({{"cpu", cpu}, {"max_ms", max_ms}});
+    return j;
+}
+
+}  // namespace
 
 std::string soak_json(const SoakResult& r)
 {
@@ -291,6 +330,7 @@ std::string soak_json(const SoakResult& r)
         {"haptic_period_max_ms", r.haptic_max_ms},
         {"haptic_missed_deadlines", r.haptic_missed},
         {"haptic_late_max_ms", r.haptic_late_max_ms},
+        {"haptic_worst_tick", worst_tick_json(r.haptic_worst)},  // that tick taken apart
         {"page_faults", r.page_faults},  // the haptic loop's thread's, after its start
         {"haptic_memory_locked", r.haptic_memory_locked},
         {"haptic_cpu", r.haptic_cpu},
@@ -298,6 +338,8 @@ std::string soak_json(const SoakResult& r)
         {"cyclictest_max_ms", r.cyclictest_max_ms ? nlohmann::json(*r.cyclictest_max_ms) : nlohmann::json(nullptr)},
         {"cyclictest_note", r.cyclictest_note},
         // its thread on the loop's CPU, and each CPU's [ms]
+        {"cyclictest_loop_cpu_max_ms", r.cyclictest_loop_cpu_max_ms ? nlohmann::json(*r.cyclictest_loop_cpu_max_ms) : nlohmann::json(nullptr)},
+        {"cyclictest_cpus", cyclictest_cpus_json(r.cyclictest_cpus)},
         {"host_steal_s", r.host_steal_s},
         {"steal_free_s", r.steal_free_s},
         {"haptic_steal_free_periods", r.haptic_steal_free_periods},

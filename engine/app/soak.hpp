@@ -20,10 +20,12 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/volume_source.hpp"
 #include "gpu/context.hpp"
+#include "haptics/period_stats.hpp"
 #include "runner/runner.hpp"
 
 namespace echosim::app {
@@ -109,6 +111,8 @@ struct SoakResult {
     // thread's page faults after its start, whether it held the process's memory locked, and the CPU
     // it was pinned to (-1: none)
     double haptic_late_max_ms = 0;
+    // that tick taken apart (haptics/period_stats.hpp): what the loop was doing, where, for how long
+    haptics::WorstTick haptic_worst;
     long long page_faults = 0;
     bool haptic_memory_locked = false;
     int haptic_cpu = -1;
@@ -116,6 +120,10 @@ struct SoakResult {
     // none with the reason where it could not run
     std::optional<double> cyclictest_max_ms;
     std::string cyclictest_note;
+    // its thread on the loop's CPU (the like-for-like floor; none where the loop was not pinned) and
+    // each CPU's (app/cyclictest.hpp: one thread pinned on each)
+    std::optional<double> cyclictest_loop_cpu_max_ms;
+    std::vector<std::pair<int, double>> cyclictest_cpus;
     // the host's steal over the run, all CPUs [s] (-1: cannot be read); the sampled seconds in which
     // it took nothing (all of them where it cannot be read), and the haptic periods of those seconds
     double host_steal_s = -1;
