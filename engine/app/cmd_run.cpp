@@ -41,27 +41,6 @@ void apply_to_window(const RunInput& in, gpu::Window& window)
     if (in.toggle_fullscreen) window.set_fullscreen(!window.fullscreen());
 }
 
-// What the live link's clients did since the last call, one line each.
-void report_link(igtl::Server& link, std::vector<igtl::ServerEvent>& events)
-{
-    events.clear();
-    link.events(events);
-    for (const igtl::ServerEvent& e : events) {
-        switch (e.kind) {
-        case igtl::ServerEvent::Kind::connected:
-            std::printf("echosim run: OpenIGTLink: %s connected (%d client%s)\n", e.peer.c_str(), e.clients, e.clients == 1 ? "" : "s");
-            break;
-        case igtl::ServerEvent::Kind::disconnected:
-            std::printf("echosim run: OpenIGTLink: %s gone: %s, after %lld frames (%d client%s)\n", e.peer.c_str(), e.reason.c_str(),
-                        static_cast<long long>(e.frames), e.clients, e.clients == 1 ? "" : "s");
-            break;
-        case igtl::ServerEvent::Kind::error:
-            std::fprintf(stderr, "echosim run: OpenIGTLink: %s\n", e.reason.c_str());
-            break;
-        }
-    }
-}
-
 // The run's input, polled by the runner before the session advances: GLFW's events, then the
 // window's mouse and keyboard (or the smoke test's script) to the window, the camera and the
 // mouse-and-keyboard device (read only when it is the session's device).
@@ -89,23 +68,12 @@ private:
 };
 
 // What the run says and shows beside the frame: the device's events (and, while it is away, the
-// title says so), the live link's clients, the title bar (the press and the force, five times a
+// title says so), the title bar (the press and the force, five times a
 // second of session time), the frames presented and the display rate; and when the run ends: the
 // window closed, the frames asked for presented, or a signal (app/stop_signals.hpp).
 class RunConsole final : public runner::Observer {
 public:
-    RunConsole(int frames, const StopSignals& stop, igtl::Server* link) : frames_(frames), stop_(stop), link_(link) {}
-
-    // every frame's image read back (a slot behind, no wait) and published with the pose it was drawn at
-    void serve(runner::Runner& runner)
-    {
-        const echo::ImagePlane* plane = &runner.session().image_plane();  // the runner's: it outlives the frames
-        runner.frame()->echo_pass().enable_readback(*runner.context(), [this, plane](const echo::EchoFrame& drawn,
-                                                                                   std::span<const std::uint8_t> grey, double wall_clock_s) {
-            fill_live_frame(live_, *plane, drawn, grey, wall_clock_s);
-            link_->publish(live_);
-        });
-    }
+    RunConsole(int frames, const StopSignals& stop) : frames_(frames), stop_(stop) {}
 
     void on_attach(runner::Runner& runner) override { window_ = runner.window(); }
     bool should_stop() override
@@ -123,7 +91,6 @@ public:
                 device_status_ = e.device + " " + device::to_string(e.kind);
             last_title_ = -1;
         }
-        if (link_) report_link(*link_, link_events_);
         const session::SessionView& state = step.view;
         if (step.session.time() - last_title_ > 0.2) {
             char title[160];
@@ -150,10 +117,7 @@ public:
 private:
     int frames_;  // stop after this many presented frames (0: until the window closes)
     const StopSignals& stop_;
-    igtl::Server* link_;
     gpu::Window* window_ = nullptr;
-    igtl::LiveFrame live_;
-    std::vector<igtl::ServerEvent> link_events_;
     std::vector<device::DeviceEvent> events_;
     std::string device_status_;  // what the title says of the device while it is away
     double last_title_ = -1;
@@ -270,7 +234,7 @@ int run_window(const RunArgs& args)
     // the real-time clock (the tissue in its own thread at 1 kHz; the window sends the probe and
     // draws the latest surface the physics published), the frame (the scene, and beside it the
     // echographic image made on the GPU every frame from the same physics step); what the run adds
-    // is its input (RunControls) and its console, title, limits and live link (RunConsole).
+    // is its input (RunControls), its console, title and limits (RunConsole) and the live link (LiveLink).
     runner::RunnerConfig config;
     config.name = "run";
     config.session = session_options;
@@ -279,8 +243,11 @@ int run_window(const RunArgs& args)
     config.gpu = context_options(args.gpu);
     config.volume = volumes.volume;
     config.labels = volumes.labels;
-    auto console = std::make_shared<RunConsole>(args.frames, stop, link.get());
+    auto console = std::make_shared<RunConsole>(args.frames, stop);
     config.observers.push_back(console);
+    // with the link: every frame's image read back (a slot behind, no wait) and published with the
+    // pose it was drawn at (app/live_link.hpp)
+    if (link) config.observers.push_back(std::make_shared<LiveLink>(*link, "echosim run: "));
     std::uint32_t swapchains = 0;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
@@ -288,9 +255,6 @@ int run_window(const RunArgs& args)
         messages = runner.validation_counter();
         session::Session& session = runner.session();
         if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
-        // with the link: every frame's image read back (a slot behind, no wait) and published with
-        // the pose it was drawn at
-        if (link) console->serve(runner);
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
                     "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
                     runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
@@ -304,6 +268,7 @@ int run_window(const RunArgs& args)
         runner.run();  // ends stopping the session: the haptic loop first, which sends the device a zero force
 
         swapchains = runner.window_output()->swapchain_generation();
+        std::printf("echosim run: the runner stepped %lld times\n", static_cast<long long>(runner.steps()));
         if (const int signal = stop.requested()) std::printf("echosim run: stopped by %s\n", StopSignals::name(signal));
         const physics::RunnerStats st = session.physics_stats();
         std::printf("echosim run: physics stepped %lld times (%lld late, %lld asleep), last probe force %.2f N\n",
@@ -323,7 +288,7 @@ int run_window(const RunArgs& args)
     if (link) {
         link->stop();
         std::vector<igtl::ServerEvent> last;
-        report_link(*link, last);
+        report_link(*link, last, "echosim run: ");
         const igtl::ServerStats st = link->stats();
         std::printf("echosim run: OpenIGTLink: sent %lld frames to %lld client%s (%lld frames published)\n",
                     static_cast<long long>(st.frames_sent), static_cast<long long>(st.clients_served), st.clients_served == 1 ? "" : "s",

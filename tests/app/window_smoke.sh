@@ -18,6 +18,9 @@ set -e
 cat "$log"
 [[ $rc -eq 0 ]] || { echo "FAIL: echosim run exited $rc"; exit 1; }
 grep -q "presented 80 frames" "$log" || { echo "FAIL: did not present 80 frames"; exit 1; }
+# the frames came through the one runner's step (runner/runner.hpp): at least one step a frame
+ran=$(sed -n 's/.*the runner stepped \([0-9]*\) times.*/\1/p' "$log")
+[[ ${ran:-0} -ge 80 ]] || { echo "FAIL: the runner stepped ${ran:-0} times for 80 frames"; exit 1; }
 grep -q "echographic volume: $work/v.nrrd with labels" "$log" || { echo "FAIL: the user's volume was not taken"; exit 1; }
 # resize (frame 10), fullscreen (30), windowed (40), resize (50): the swapchain is remade each time
 created=$(sed -n 's/.*swapchain created \([0-9]*\) times.*/\1/p' "$log")

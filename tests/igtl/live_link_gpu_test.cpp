@@ -17,6 +17,7 @@
 #include "image/echo_image_gpu.hpp"
 #include "render/image_panel_pass.hpp"
 #include "runner/echo_image_pass.hpp"
+#include "runner/runner.hpp"
 #include "session/session.hpp"
 #include "test_gpu.hpp"
 
@@ -112,6 +113,41 @@ TEST(IgtlLiveLink, PublishesTheImageTheGpuDrewWhereItsProbeWas)
     EXPECT_NEAR(m[0][1], -beam.x, 1e-5);
     EXPECT_NEAR(m[1][1], -beam.y, 1e-5);
     EXPECT_NEAR(m[2][1], beam.z, 1e-5);
+}
+
+// `echosim run --igtl` wires the link as an observer of the runner (app/live_link.hpp): every frame
+// the runner draws is read back a slot later and published; the client receives the image.
+TEST(IgtlLiveLink, TheRunnersObserverPublishesTheFramesItDraws)
+{
+    const scene::LegModel leg;
+    const test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, leg.probe_rest_pose(0.5f, 0.5f), 0.6);
+    ServerOptions options;
+    options.port = 0;
+    Server server(options);
+    test::IgtlClient client(server.port());
+    ASSERT_TRUE(client.ok());
+    runner::RunnerConfig c;
+    c.name = "live link test";
+    c.output = runner::Output::offscreen;
+    c.extent = {96, 64};
+    c.gpu = test::lavapipe_options();
+    c.volume = std::make_shared<const io::Volume>(v.grey);
+    c.labels = std::make_shared<const io::Volume>(v.labels);
+    c.max_steps = gpu::kFramesInFlight + 3;
+    c.observers.push_back(std::make_shared<app::LiveLink>(server, "test: "));
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        runner::Runner r(std::move(c));
+        messages = r.validation_counter();
+        r.run();
+        EXPECT_EQ(r.frames(), gpu::kFramesInFlight + 3);
+    }
+    // a frame is handed over when its slot comes round again: all but the last kFramesInFlight
+    EXPECT_EQ(server.stats().frames_published, 3);
+    EXPECT_EQ(messages->load(), 0u);
+    test::IgtlMessage image;
+    ASSERT_TRUE(client.receive(image));
+    EXPECT_EQ(image.name, kImageName);
 }
 
 }  // namespace
