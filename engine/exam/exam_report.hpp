@@ -84,6 +84,15 @@ struct ExamReport {
     // from adequate_force_N up to excessive_force_N [N]; 0: not known, not drawn
     double adequate_force_N = 0;
     double excessive_force_N = 0;
+    // where the course's landmarks lie along the deep vein [cm from the inguinal ligament, the
+    // deep vein's s] (the phantom's vein course), for the report's leg map to place its stations
+    // to scale; 0: not given, the map takes them from the stations' segments
+    struct CourseLandmarks {
+        double sfj_cm = 0;           // the saphenofemoral junction
+        double bifurcation_cm = 0;   // the CFV dividing into FV and DFV
+        double hiatus_cm = 0;        // the adductor hiatus: FV into popliteal
+        double trifurcation_cm = 0;  // the popliteal vein's end
+    } course;
     // the force over time, for the trace: every sample (t [s], force [N])
     std::vector<std::pair<double, double>> force_trace;
 };
