@@ -352,6 +352,10 @@ Scenario parse_scenario(const std::string& json_text, const std::filesystem::pat
 {
     const json j = parse_scenario_text(json_text, file);
     const Reader r(file);
+    // the schema beside the cases (a glob of *.json takes it too) is said to be one, not taken apart
+    if (j.is_object() && j.contains("$schema") && j.at("$schema").is_string() &&
+        j.at("$schema").get_ref<const std::string&>().rfind("https://json-schema.org/", 0) == 0)
+        r.fail("", "a JSON Schema (the case format's own, scenario.schema.json), not a case");
     // the version first: a later version's file is refused as such, not for a field this reader lacks
     if (j.is_object() && j.contains("version") && !(j.at("version").is_number() && j.at("version").get<double>() == 1.0))
         r.fail("/version", j.at("version").dump() + ": this reader reads version 1 of the case format");

@@ -441,6 +441,11 @@ TEST(Scenario, TextFaultsRefusedNamingWhere)
     r = refusal_of_text(replaced("\"comment\":\"for the test\"", "\"comment\":" + std::string(20, '[') + std::string(20, ']')));
     EXPECT_NE(r.message.find("nested deeper"), std::string::npos) << r.message;
 
+    // the schema beside the cases, given as a case: said to be the schema
+    r = refusal_of_text(schema().dump());
+    EXPECT_EQ(r.field, "");
+    EXPECT_NE(r.message.find("a JSON Schema"), std::string::npos) << r.message;
+
     // the file's own text in a message is escaped: no terminal escape sequence reaches the screen
     r = refusal_of_text(replaced("\"imaging\":\"generative\"", "\"imaging\":\"\\u001b]0;owned\\u0007\""));
     EXPECT_EQ(r.field, "/imaging");
