@@ -184,4 +184,13 @@ struct DevicesArgs {
 };
 int run_devices(const DevicesArgs& args);
 
+// `echosim case validate F...` (each file read as the exam reads it: "F: ok (id, N stations,
+// protocol)", or the error naming the file and the field; exit 2 when any is bad) and `echosim case
+// list` (the shipped cases: id and title).
+struct CaseArgs {
+    std::string action;                       // "validate" or "list"
+    std::vector<std::filesystem::path> files;  // validate: the case files
+};
+int run_case(const CaseArgs& args);
+
 }  // namespace echosim::app

@@ -210,6 +210,14 @@ int main(int argc, char** argv)
     DevicesArgs devices;
     auto* devices_cmd = app.add_subcommand("devices", "list the input and haptic devices echosim can drive, and whether each is ready");
     devices_cmd->add_flag("--json", devices.json, "print them as a JSON array");
+    CaseArgs case_args;
+    auto* case_cmd = app.add_subcommand("case", "check the exam's case files (assets/cases/README.md) and list the shipped cases");
+    case_cmd->require_subcommand(1);
+    case_cmd->add_subcommand("validate", "read each case file as the exam does: 'F: ok (id, N stations, protocol)', or the field at fault (exit 2)")
+        ->callback([&case_args] { case_args.action = "validate"; })
+        ->add_option("files", case_args.files, "case files (JSON, assets/cases/scenario.schema.json)")
+        ->required();
+    case_cmd->add_subcommand("list", "the shipped cases: id and title")->callback([&case_args] { case_args.action = "list"; });
 
     try {
         app.parse(argc, argv);
@@ -232,6 +240,7 @@ int main(int argc, char** argv)
         if (demo_cmd->parsed()) return run_haptics_demo(demo);
         if (devices_cmd->parsed()) return run_devices(devices);
         if (soak_cmd->parsed()) return run_soak(soak);
+        if (case_cmd->parsed()) return run_case(case_args);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;
