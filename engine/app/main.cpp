@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "app/cmd_records.hpp"
 #include "core/image_limits.hpp"
 #include "app/soak.hpp"
 #include "igtl/live_frame.hpp"
@@ -219,6 +220,28 @@ int main(int argc, char** argv)
         ->required();
     case_cmd->add_subcommand("list", "the shipped cases: id and title")->callback([&case_args] { case_args.action = "list"; });
 
+    RecordsArgs records_args;
+    auto* records_cmd = app.add_subcommand(
+        "records", "the trainee records: the exams stored, and each trainee's learning curve (score per session, CUSUM per station type)");
+    const auto records_source = [&records_args](CLI::App* cmd) {
+        cmd->add_option_function<std::string>(
+            "--trainee", [&records_args](const std::string& name) { records_args.trainee = name; }, "only this trainee's sessions");
+        cmd->add_option("--records", records_args.records,
+                        "the records database (default: $XDG_DATA_HOME/echosim/records.sqlite, else ~/.local/share/echosim/records.sqlite)");
+    };
+    records_source(records_cmd);
+    records_cmd->add_option("--plot", records_args.plot, "also draw the learning curves into this PNG");
+    records_cmd->add_flag("--json", records_args.json, "print the sessions and the learning curves as JSON");
+    auto* records_export_cmd =
+        records_cmd->add_subcommand("export", "write the sessions as xAPI 1.0.3 statements, for a learning record store to import");
+    records_export_cmd->add_option("--xapi", records_args.xapi, "the JSON file of statements to write")->required();
+    records_source(records_export_cmd);
+    records_export_cmd->add_option("--homepage", records_args.homepage, "the home page of the trainees' accounts: the lab's (default: https://echosim.org)");
+    auto* records_add_cmd = records_cmd->add_subcommand(
+        "add", "store an exam's report.json in the records (an exam run with --no-records, or on another machine)");
+    records_add_cmd->add_option("report", records_args.report, "the exam's report.json")->required();
+    records_source(records_add_cmd);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -241,6 +264,10 @@ int main(int argc, char** argv)
         if (devices_cmd->parsed()) return run_devices(devices);
         if (soak_cmd->parsed()) return run_soak(soak);
         if (case_cmd->parsed()) return run_case(case_args);
+        if (records_cmd->parsed())
+            return records_export_cmd->parsed() ? run_records_export(records_args)
+                   : records_add_cmd->parsed()  ? run_records_add(records_args)
+                                                : run_records(records_args);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "echosim %s: error: %s\n", which, e.what());
         return kExitFailure;

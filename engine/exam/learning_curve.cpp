@@ -111,7 +111,7 @@ io::RgbaImage learning_curve_plot(const std::vector<LearningCurve>& curves, doub
         score.title = "Score per session: " + c.trainee;
         score.x_label = "session";
         score.y_label = "score [%]";
-        score.y_range = io::Range{0, 100};
+        score.y_range = io::Range{0, 105};  // a score of 100 % off the frame's edge
         io::Series points{"score", std::nullopt, {}, io::SeriesStyle::line_and_markers};
         for (std::size_t i = 0; i < c.sessions.size(); ++i) points.points.push_back({double(i + 1), 100 * c.sessions[i].score});
         const double n = std::max<double>(2, double(c.sessions.size()));
