@@ -30,8 +30,6 @@ footer { margin-top: 32px; color: #757575; font-size: 12px; }
 
 std::string percent(double fraction) { return fixed(100.0 * fraction, 0) + " %"; }
 
-std::string yes_no(bool v) { return v ? "yes" : "no"; }
-
 std::string station_rows(const ExamReport& r)
 {
     std::string s;
@@ -56,7 +54,7 @@ std::string station_rows(const ExamReport& r)
         s += "<td>" + measured(st.artery_area_ratio, 2) + "</td>";
         s += std::string("<td class=\"text\">") + (st.thrombosed ? "thrombus" : "patent") + "</td>";
         s += std::string("<td class=\"text\">") + call_name(st.call) + "</td>";
-        s += std::string("<td class=\"text\">") + (st.call_correct ? "right" : "wrong") + "</td>";
+        s += std::string("<td class=\"text\">") + (st.call == Call::none ? "-" : st.call_correct ? "right" : "wrong") + "</td>";
         s += "</tr>\n";
     }
     return s;

@@ -103,6 +103,7 @@ io::Plot force_plot(const ExamReport& r)
     plot.x_label = "time [s]";
     plot.y_label = "force [N]";
     plot.legend = io::Corner::top_left;
+    plot.text_scale = 2;  // the page's own text size: the automatic one is for a plot alone
     double t1 = r.motion.duration_s;
     io::Series force{"force", io::Rgba{21, 101, 192, 255}, {}, io::SeriesStyle::line};
     for (const auto& [t, f] : r.force_trace) {
@@ -212,7 +213,8 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
         const std::string row = format("%-3zu %-16.16s %-9.9s %6s  %-8s %7s %6s %9s %10s %-9s %-16s %-5s", i + 1, s.name.c_str(),
                                        s.segment.c_str(), fixed(s.s_cm, 1).c_str(), station_status_name(status), measured(s.offset_mm, 1).c_str(),
                                        measured(s.angle_deg, 1).c_str(), measured(s.peak_force_N, 1).c_str(), measured(s.collapse_ratio, 2).c_str(),
-                                       s.thrombosed ? "thrombus" : "patent", call_name(s.call), s.call_correct ? "right" : "wrong");
+                                       s.thrombosed ? "thrombus" : "patent", call_name(s.call),
+                                       s.call == Call::none ? "-" : s.call_correct ? "right" : "wrong");
         io::draw_text(img, kMargin + 20, y, fit(row, text_w - 20, 2), 2, kInk);
         y += line;
     }
