@@ -4,12 +4,11 @@
 
 // B-mode synthesis, pass 2 (bmode_bindings.h): per column of each frame, down the beam: attenuation
 // less TGC, specular echoes where the tissue changes and the shadow of what they reflect
-// (bmode_beam_step); then the axial point-spread function down the same column. One invocation owns
-// its column, so it reads back what it wrote without a barrier.
+// (bmode_beam_step), from buffer A into buffer B.
 layout(local_size_x = BMODE_BEAM_GROUP) in;
-layout(std430, binding = BMODE_FIELD_BINDING) buffer Field { vec2 field[]; };
-layout(std430, binding = BMODE_LABELS_BINDING) readonly buffer Labels { uint labels[]; };
-layout(std430, binding = BMODE_AXIAL_BINDING) writeonly buffer Axial { vec2 axial[]; };
+layout(binding = BMODE_FIELD_TEXELS_BINDING) uniform samplerBuffer field;
+layout(binding = BMODE_LABEL_TEXELS_BINDING) uniform usamplerBuffer labels;
+layout(std430, binding = BMODE_BEAM_BINDING) writeonly buffer Beam { vec2 beam[]; };
 
 void main()
 {
@@ -19,21 +18,9 @@ void main()
     float transmitted = 1.0;
     uint above = 0u;
     for (uint r = 0u; r < k.rows; ++r) {
-        const uint at = base + r * k.columns;
-        const uint t = labels[at];
-        field[at] = bmode_beam_step(field[at], above, t, r == 0u, transmitted);
+        const int at = int(base + r * k.columns);
+        const uint t = texelFetch(labels, at).r;
+        beam[at] = bmode_beam_step(texelFetch(field, at).xy, above, t, r == 0u, transmitted);
         above = t;
-    }
-    const int ra = int(k.axial_radius), rows = int(k.rows);
-    for (int r = 0; r < rows; ++r) {
-        precise vec2 s = vec2(0.0);
-        for (int d = -ra; d <= ra; ++d) {
-            const int rr = r + d;
-            if (rr >= 0 && rr < rows) {
-                precise vec2 term = field[base + uint(rr) * k.columns] * bmode_axial_tap(uint(d + ra));
-                s = s + term;
-            }
-        }
-        axial[base + uint(r) * k.columns] = s;
     }
 }

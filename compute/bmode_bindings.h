@@ -1,5 +1,5 @@
 // Bindings of the B-mode synthesis kernels (compute/bmode_scatter.comp, bmode_beam.comp,
-// bmode_lateral.comp), shared with their CPU twin (engine/echo/bmode.cpp) and their dispatcher
+// bmode_axial.comp, bmode_lateral.comp), shared with their CPU twin (engine/echo/bmode.cpp) and their dispatcher
 // (engine/image/bmode_gpu.cpp). The model is engine/echo/bmode.hpp's; here is its arithmetic, written
 // once in the subset of GLSL and C++ that kernel_shared.h makes common, so the twins compute the
 // same floats in the same order.
@@ -8,12 +8,13 @@
 // phantom on the CPU) and per-tissue acoustic tables in BModeParams, so a changed phantom or a new
 // tissue needs no shader change (up to BMODE_MAX_TISSUES codes).
 //
-// Three passes per batch of frames (gl_GlobalInvocationID.z / the frame index picks the frame):
+// Four passes per batch of frames (gl_GlobalInvocationID.z / the frame index picks the frame):
 //   1. scatter (per pixel): the tissue at the pixel, the complex scatterer field summed over the
 //      beam's elevational planes, times the tissue's scattering strength and texture;
 //   2. beam (per column, down the rows): attenuation less TGC, specular echoes at label changes,
-//      the shadow of what is reflected; then the axial point-spread function down the column;
-//   3. lateral (per run of 4 pixels of a row): the lateral point-spread function, the envelope
+//      the shadow of what is reflected;
+//   3. axial (per pixel): the axial point-spread function down the column;
+//   4. lateral (per run of 4 pixels of a row): the lateral point-spread function, the envelope
 //      (magnitude) and log compression, packed 4 grey bytes and 4 label bytes to a word.
 #ifndef ECHOSIM_BMODE_BINDINGS_H
 #define ECHOSIM_BMODE_BINDINGS_H
@@ -38,6 +39,8 @@ namespace echosim::kernels {
 #define BMODE_SCATTER_GROUP_X 16
 #define BMODE_SCATTER_GROUP_Y 4
 #define BMODE_BEAM_GROUP 32
+#define BMODE_AXIAL_GROUP_X 16
+#define BMODE_AXIAL_GROUP_Y 4
 #define BMODE_LATERAL_GROUP_X 16  // runs of 4 pixels
 #define BMODE_LATERAL_GROUP_Y 4
 
@@ -49,13 +52,17 @@ namespace echosim::kernels {
 #define BMODE_PARAMS_BINDING 0   // uniform BModeParams
 #define BMODE_FRAMES_BINDING 1   // uniform BModeFrames: the batch's probe poses
 #define BMODE_VOLUME_BINDING 2   // uniform texel buffer, R8_UINT: the tissue-label volume, x fastest
-#define BMODE_FIELD_BINDING 3    // vec2 per pixel: the scattered field, then attenuated (pass 1 -> 2)
-#define BMODE_LABELS_BINDING 4   // uint per pixel: the tissue code (pass 1 -> 2, 3)
-#define BMODE_AXIAL_BINDING 5    // vec2 per pixel: the field after the axial PSF (pass 2 -> 3)
-#define BMODE_AXIAL_TEXELS_BINDING 6  // the same buffer as RG32F texels (pass 3 reads it so: one gather on lavapipe)
-#define BMODE_GREY_BINDING 7     // uint per 4 pixels of a row: grey bytes, x fastest (pass 3)
-#define BMODE_LABEL_OUT_BINDING 8  // uint per 4 pixels of a row: tissue codes (pass 3)
-#define BMODE_ENVELOPE_BINDING 9   // float per pixel: the envelope before log compression (pass 3, variant)
+#define BMODE_FIELD_BINDING 3    // vec2 per pixel, buffer A: the scattered field (pass 1), then after the axial PSF (pass 3)
+#define BMODE_LABELS_BINDING 4   // uint per pixel: the tissue code (pass 1)
+#define BMODE_BEAM_BINDING 5     // vec2 per pixel, buffer B: the field down the beam, attenuated, with its echoes (pass 2)
+#define BMODE_BEAM_TEXELS_BINDING 6   // buffer B as RG32F texels (pass 3 reads it)
+#define BMODE_GREY_BINDING 7     // uint per 4 pixels of a row: grey bytes, x fastest (pass 4)
+#define BMODE_LABEL_OUT_BINDING 8  // uint per 4 pixels of a row: tissue codes (pass 4)
+#define BMODE_ENVELOPE_BINDING 9   // float per pixel: the envelope before log compression (pass 4, variant)
+#define BMODE_FIELD_TEXELS_BINDING 10  // buffer A as RG32F texels (passes 2 and 4 read it)
+#define BMODE_LABEL_TEXELS_BINDING 11  // the tissue codes as R32UI texels (passes 2 and 4 read them)
+// Reads go through texel views, writes to storage: on a CPU device (lavapipe) a texel fetch is one
+// vector gather, a storage buffer's load a loop over the lanes; so no pass reads what it writes.
 
 // the lateral pass's variant (specialization constant 0): also write the envelope
 #define BMODE_WITH_ENVELOPE 1u

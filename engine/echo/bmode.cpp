@@ -62,7 +62,7 @@ void put(glm::vec4* table, std::size_t i, float value) { table[i / 4][int(i % 4)
 using glm::vec2;
 using glm::vec3;
 
-// The twin of the three kernels for one frame, the tissue of each pixel from `tissue_of(p)`.
+// The twin of the four kernels for one frame, the tissue of each pixel from `tissue_of(p)`.
 template <class TissueOf>
 BModeImage run_twin(const kernels::BModeParams& k, const kernels::BModePose& pose, TissueOf&& tissue_of)
 {
@@ -83,27 +83,30 @@ BModeImage run_twin(const kernels::BModeParams& k, const kernels::BModePose& pos
             field[at] = kernels::bmode_scattered(p, vec3(pose.z), t, k);
             img.labels[at] = std::uint8_t(t);
         }
-    // pass 2: down each beam, then the axial PSF (bmode_beam.comp)
-    const int ra = int(k.axial_radius), rows = int(h);
+    // pass 2: down each beam (bmode_beam.comp), into `beam`
+    std::vector<vec2> beam(n);
     for (std::size_t c = 0; c < w; ++c) {
         float transmitted = 1.0f;
         std::uint32_t above = 0;
         for (std::size_t r = 0; r < h; ++r) {
             const std::size_t at = r * w + c;
             const std::uint32_t t = img.labels[at];
-            field[at] = kernels::bmode_beam_step(field[at], above, t, r == 0, transmitted, k);
+            beam[at] = kernels::bmode_beam_step(field[at], above, t, r == 0, transmitted, k);
             above = t;
         }
-        for (int r = 0; r < rows; ++r) {
+    }
+    // pass 3: the axial PSF (bmode_axial.comp)
+    const int ra = int(k.axial_radius), rows = int(h);
+    for (int r = 0; r < rows; ++r)
+        for (std::size_t c = 0; c < w; ++c) {
             vec2 s(0.0f);
             for (int d = -ra; d <= ra; ++d) {
                 const int rr = r + d;
-                if (rr >= 0 && rr < rows) s = s + field[std::size_t(rr) * w + c] * kernels::bmode_axial_tap(std::uint32_t(d + ra), k);
+                if (rr >= 0 && rr < rows) s = s + beam[std::size_t(rr) * w + c] * kernels::bmode_axial_tap(std::uint32_t(d + ra), k);
             }
             axial[std::size_t(r) * w + c] = s;
         }
-    }
-    // pass 3: the lateral PSF, the envelope, log compression (bmode_lateral.comp)
+    // pass 4: the lateral PSF, the envelope, log compression (bmode_lateral.comp)
     img.envelope.resize(n);
     img.pixels.resize(n);
     const int rl = int(k.lateral_radius), columns = int(w);

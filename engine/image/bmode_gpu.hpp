@@ -1,10 +1,10 @@
-// B-mode synthesis on the GPU: the kernels compute/bmode_scatter.comp, bmode_beam.comp and
-// bmode_lateral.comp (bmode_bindings.h) over a tissue-label volume held on the device, frames of a
-// sweep in batches (one submit each: the three passes over every frame of the batch, then one wait),
+// B-mode synthesis on the GPU: the kernels compute/bmode_scatter.comp, bmode_beam.comp,
+// bmode_axial.comp and bmode_lateral.comp (bmode_bindings.h) over a tissue-label volume held on the device, frames of a
+// sweep in batches (one submit each: the four passes over every frame of the batch, then one wait),
 // so a case's sweep costs a few dozen submits. The CPU twin it must agree with is
 // echo::synthesize(labels, ...) (engine/echo/bmode.hpp); tests/image/bmode_gpu_test.cpp compares.
 //
-// Memory per frame of a batch: 26 bytes a pixel on the device (field, labels, axial field; grey,
+// Memory per frame of a batch: 26 bytes a pixel on the device (buffers A and B, codes; grey,
 // tissue codes and, for synthesize(), the envelope in host-visible memory read directly).
 //
 // Threading: one thread at a time, the one owning `pool` (gpu/command_pool.hpp).
@@ -48,11 +48,11 @@ private:
     gpu::Buffer volume_;
     gpu::TexelView volume_texels_;
     gpu::Buffer params_buffer_, frames_buffer_;  // uniform, host-visible
-    gpu::Buffer field_, labels_, axial_;          // device-local
-    gpu::TexelView axial_texels_;
+    gpu::Buffer field_, labels_, beam_buffer_;    // device-local: buffers A, codes, B (bmode_bindings.h)
+    gpu::TexelView field_texels_, label_texels_, beam_texels_;
     gpu::Buffer grey_, label_out_, envelope_;     // host-visible: read directly after the wait
     // last, so destroyed first: they wait for the device before the buffers they bind go
-    gpu::ComputeKernel scatter_, beam_, lateral_;
+    gpu::ComputeKernel scatter_, beam_, axial_, lateral_;
 };
 
 }  // namespace echosim::image
