@@ -3,7 +3,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "app/bmode_imager.hpp"
 #include "app/commands.hpp"
+#include "app/gpu_args.hpp"
 #include "app/terminal_progress.hpp"
 #include "echo/phantom.hpp"
 #include "echo/reconstruct.hpp"
@@ -42,9 +44,22 @@ int run_phantom(const PhantomArgs& args)
     options.frames = args.frames;
     options.seed = args.seed;
     options.spec.pixel_mm = args.pixel_mm;
+    // the anatomy over the frames as a label volume, imaged on the GPU (else, or with --cpu, by
+    // the CPU twin of its kernels: the same images to within a grey level)
     TerminalProgress progress("echosim phantom: ");
-    const echo::TrackedSweep sweep = echo::make_sweep(leg, medium, options, [&](int done, int total) {
-        progress("imaging the sweep (" + std::to_string(total) + " frames)", double(done) / total);
+    progress("voxelising the anatomy", 0.0);
+    const auto anatomy = std::make_shared<const io::Volume>(echo::voxelise_frames(medium, echo::sweep_poses(leg, options), options.spec));
+    std::unique_ptr<echo::SweepImager> imager;
+    try {
+        if (args.cpu) imager = std::make_unique<echo::CpuSweepImager>(anatomy, options.spec);
+        else imager = make_bmode_imager(anatomy, options.spec, context_options(args.gpu), "echosim phantom");
+    } catch (const std::invalid_argument& e) {
+        progress.finish();
+        std::fprintf(stderr, "echosim phantom: %s\n", e.what());
+        return kExitBadInput;
+    }
+    const echo::TrackedSweep sweep = echo::make_sweep(leg, *imager, options, [&](int done, int total) {
+        progress("imaging the sweep (" + std::to_string(total) + " frames, " + imager->backend() + ")", double(done) / total);
     });
     progress.finish();
     // the frames' tissue labels, a sweep of their own beside it, for reconstructing the labels
@@ -78,9 +93,9 @@ int run_phantom(const PhantomArgs& args)
         else if (i == 1) io::write_plus_mha(path, labels, true);
         else io::write_nrrd(path, map, true);
     });
-    std::printf("echosim phantom: %s case, %zu frames of %ux%u (%.2f mm pixels) in %s, their labels in %s\n",
+    std::printf("echosim phantom: %s case, %zu frames of %ux%u (%.2f mm pixels, synthesised on %s) in %s, their labels in %s\n",
                 echo::case_name(which), sweep.sweep.frames.size(), sweep.sweep.width, sweep.sweep.height, args.pixel_mm,
-                args.out.c_str(), label_path.c_str());
+                imager->backend().c_str(), args.out.c_str(), label_path.c_str());
     if (!args.labels.empty())
         std::printf("echosim phantom: label map %zux%zux%zu (0.3 mm) in %s\n", map.size[0], map.size[1], map.size[2], args.labels.c_str());
     return kExitOk;

@@ -117,6 +117,8 @@ struct PhantomArgs {
     double pixel_mm = 0.1;
     std::uint64_t seed = 1;
     bool compressed = false;
+    bool cpu = false;  // synthesise on the CPU twin, not the GPU
+    GpuArgs gpu;
 };
 int run_phantom(const PhantomArgs& args);
 

@@ -116,6 +116,8 @@ int main(int argc, char** argv)
     phantom_cmd->add_option("--pixel-mm", phantom.pixel_mm, "image pixel size [mm]")->check(finite_range(0.02, 1.0));
     phantom_cmd->add_option("--seed", phantom.seed, "random seed of the hand tremor");
     phantom_cmd->add_flag("--compressed", phantom.compressed, "zlib-compress the pixels");
+    phantom_cmd->add_flag("--cpu", phantom.cpu, "synthesise the frames on the CPU (default: the GPU, falling back to the CPU without a device)");
+    add_gpu_options(phantom_cmd, phantom.gpu);
 
     ReconstructArgs reconstruct;
     auto* reconstruct_cmd = app.add_subcommand("reconstruct", "freehand 3D reconstruction of a tracked sweep (PLUS recording) into a volume");

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "app/bmode_imager.hpp"
 #include "echo/case_volume.hpp"
 #include "echo/echo_image_cpu.hpp"
 #include "io/owned_temp.hpp"
@@ -136,7 +137,10 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     }
 
     const scene::LegModel leg;
-    echo::CaseVolume made = echo::make_case_volume(leg, which, {}, progress);
+    // imaged on the GPU when a device is at hand (the one ECHOSIM_GPU names, else the best)
+    echo::CaseVolumeOptions options;
+    options.imager = bmode_imager_factory(gpu::ContextOptions::from_environment(), "echosim");
+    echo::CaseVolume made = echo::make_case_volume(leg, which, options, progress);
     // the pair into a folder of its own (locked while this run lives: io/owned_temp.hpp), renamed
     // into place whole
     std::filesystem::create_directories(folder.parent_path(), ec);

@@ -1,0 +1,132 @@
+// Suite "bmode": B-mode synthesis of sweep frames (issue 33) in frames per second, at 400x500,
+// 512x512 and 1024x1024 pixels of 0.1 mm (the probe's 40 x 50 mm image, and square ones 51 and
+// 102 mm across), through the acute-DVT phantom voxelised over the frames (echo::voxelise_frames),
+// on the CPU twin (all cores), on lavapipe, and on a GPU when one is present. Each iteration images
+// one batch of frames down the thigh, as `echosim phantom` does: for the GPU one submit of the three
+// passes over the batch, waited for, the grey levels and tissue codes copied out. Rows: width,
+// height, backend, mode (sweep; the live generative mode is not built yet), fps.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/suites.hpp"
+#include "echo/sweep.hpp"
+#include "gpu/command_pool.hpp"
+#include "image/bmode_gpu.hpp"
+#include "scene/leg.hpp"
+
+namespace echosim::bench {
+namespace {
+
+struct BmodeScene {
+    echo::ScanSpec spec;
+    std::vector<Pose> poses;
+    std::shared_ptr<const io::Volume> labels;
+};
+
+// A Vulkan device (on first use of its rows).
+struct Device {
+    std::string name;  // "lavapipe" or "gpu"
+    gpu::Context ctx;
+    Device(std::string n, const gpu::ContextOptions& o) : name(std::move(n)), ctx(o) {}
+};
+
+struct BmodeFixture {
+    scene::LegModel leg;
+    std::unique_ptr<echo::Phantom> phantom;
+    std::map<std::uint32_t, BmodeScene> scenes;  // by width
+    std::unique_ptr<Device> lavapipe, gpu;
+
+    const BmodeScene& scene(std::uint32_t width, std::uint32_t height)
+    {
+        auto it = scenes.find(width);
+        if (it != scenes.end()) return it->second;
+        if (!phantom) phantom = std::make_unique<echo::Phantom>(leg, echo::Case::dvt_acute);
+        BmodeScene s;
+        echo::SweepOptions o;
+        o.frames = 64;  // 6 mm of thigh
+        o.u_from = 0.47f;
+        o.u_to = 0.53f;
+        o.spec.width_mm = width * o.spec.pixel_mm;
+        o.spec.depth_mm = height * o.spec.pixel_mm;
+        s.spec = o.spec;
+        s.poses = echo::sweep_poses(leg, o);
+        s.labels = std::make_shared<const io::Volume>(echo::voxelise_frames(echo::PhantomMedium(*phantom), s.poses, s.spec));
+        return scenes.emplace(width, std::move(s)).first->second;
+    }
+};
+
+void frames(benchmark::State& state, const BmodeScene& s, echo::SweepImager& imager, const std::string& backend)
+{
+    const std::size_t n = std::min(imager.batch_frames(), s.poses.size()), bytes = std::size_t(s.spec.columns()) * s.spec.rows();
+    std::vector<std::uint8_t> pixels(n * bytes), labels(n * bytes);
+    std::size_t at = 0;
+    const auto batch = [&] {
+        // successive batches down the frames, as a sweep goes
+        if (at + n > s.poses.size()) at = 0;
+        imager.image(std::span(s.poses).subspan(at, n), pixels.data(), labels.data());
+        at += n;
+    };
+    batch();  // warm-up: the first dispatch of each kernel
+    for (auto _ : state) batch();
+    state.counters["width"] = s.spec.columns();
+    state.counters["height"] = s.spec.rows();
+    state.counters["batch"] = double(n);
+    state.counters["fps"] = benchmark::Counter(double(state.iterations() * n), benchmark::Counter::kIsRate);
+    state.SetLabel("backend=" + backend + " mode=sweep");
+}
+
+std::unique_ptr<Device> open_device(const char* name, const gpu::ContextOptions& o)
+{
+    try {
+        return std::make_unique<Device>(name, o);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "echosim bench bmode: no %s rows: %s\n", name, e.what());
+        return nullptr;
+    }
+}
+
+}  // namespace
+
+std::shared_ptr<void> register_bmode(const SuiteOptions& options)
+{
+    auto fixture = std::make_shared<BmodeFixture>();
+    gpu::ContextOptions cpu_device = options.gpu;
+    cpu_device.gpu = "cpu";
+    fixture->lavapipe = open_device("lavapipe", cpu_device);
+    // the GPU: the one --gpu names, or the best; none when that is the CPU implementation
+    if (options.gpu.gpu != "cpu" && options.gpu.gpu != "lavapipe" && options.gpu.gpu != "llvmpipe") {
+        fixture->gpu = open_device("gpu", options.gpu);
+        if (fixture->gpu && fixture->gpu->ctx.device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU) fixture->gpu.reset();
+    }
+    BmodeFixture* f = fixture.get();
+    const auto add = [&](const std::string& name, auto&& body) {
+        benchmark::RegisterBenchmark(name.c_str(), std::forward<decltype(body)>(body))
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->MinTime(options.min_time_s);
+    };
+    for (const auto& [w, h] : {std::pair{400u, 500u}, std::pair{512u, 512u}, std::pair{1024u, 1024u}}) {
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        for (Device* d : {f->lavapipe.get(), f->gpu.get()})
+            if (d)
+                add("bmode/" + d->name + "/" + size, [f, d, w = w, h = h](benchmark::State& s) {
+                    const BmodeScene& scene = f->scene(w, h);
+                    gpu::CommandPool pool(d->ctx);  // this thread's
+                    image::BModeGpu imager(pool, *scene.labels, scene.spec);
+                    frames(s, scene, imager, d->name == "gpu" ? d->ctx.device_name() : d->name);
+                });
+        add("bmode/cpu/" + size, [f, w = w, h = h](benchmark::State& s) {
+            const BmodeScene& scene = f->scene(w, h);
+            echo::CpuSweepImager imager(scene.labels, scene.spec);
+            frames(s, scene, imager, "cpu");
+        });
+    }
+    return fixture;
+}
+
+}  // namespace echosim::bench
