@@ -20,13 +20,14 @@ SimulatorFrame::SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& comman
                   scene.session.patient()),
       smooth_(ctx, gpu::Filter::linear), panel_(ctx, format, {}), echo_pass_(echo_image_, panel_, smooth_), cue_pass_(commands, format)
 {
-    const PassSetup setup{ctx, commands, format, scene};
+    const PassSetup setup{ctx, commands, format, scene, panel_};
     std::vector<std::pair<PassPlace, gpu::FramePass*>> made;
     for (const PassFactory& f : extra) {
         if (!f.make) throw std::invalid_argument("frame: a configuration's pass has no factory");
         extra_.push_back(f.make(setup));
         if (!extra_.back()) throw std::invalid_argument("frame: a configuration's pass factory made no pass");
         made.emplace_back(f.place, extra_.back().get());
+        if (auto* follows = dynamic_cast<SessionPass*>(extra_.back().get())) following_.push_back(follows);
     }
     const auto add = [&](PassPlace place) {
         for (const auto& [p, pass] : made)
@@ -57,6 +58,7 @@ void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& 
     panel_.set_rect(panel);
     scene_pass_.set_area({0.0f, 0.0f, panel.x, 1.0f});
     cue_pass_.set(image_cue(*state.echo, scene.session.image_plane(), echo_image_.volume_grid()), panel, extent);
+    for (SessionPass* p : following_) p->set(state, extent);
 }
 
 }  // namespace echosim::runner

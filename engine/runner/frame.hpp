@@ -13,7 +13,8 @@
 //   - image cue: NO CONTACT or OUTSIDE THE MODELLED REGION over the panel when there is nothing to
 //     image (runner/image_cue.hpp).
 // A configuration adds its own passes at the bracketed places (PassFactory): a B-mode pass filling
-// the panel's image at `image`, a UI drawn over everything at `overlay`.
+// the panel's image at `image`, a UI drawn over everything at `overlay`; a pass that follows the
+// session (a SessionPass) is given each frame's view before the frame is drawn.
 #pragma once
 
 #include <functional>
@@ -49,6 +50,16 @@ struct PassSetup {
     gpu::CommandPool& commands;  // the drawing thread's
     VkFormat format;             // the presenter's target
     const DefaultScene& scene;
+    // the image panel: a pass at PassPlace::image that makes the panel's image itself (a B-mode
+    // pass) shows it there from its record(), after the echographic image pass has shown its own
+    render::ImagePanelPass& panel;
+};
+
+// A configuration's pass that follows the session: before each frame it is drawn, it gets the
+// frame's view (the same physics step the scene and the image show) and the frame's extent.
+class SessionPass : public gpu::FramePass {
+public:
+    virtual void set(const session::SessionView& state, VkExtent2D extent) = 0;
 };
 struct PassFactory {
     PassPlace place = PassPlace::overlay;
@@ -83,6 +94,7 @@ private:
     EchoImagePass echo_pass_;
     CuePass cue_pass_;
     std::vector<std::unique_ptr<gpu::FramePass>> extra_;  // the configuration's
+    std::vector<SessionPass*> following_;                 // those of them that follow the session
     std::vector<gpu::FramePass*> order_;
     std::optional<gpu::FramePasses> passes_;
 };

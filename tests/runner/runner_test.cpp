@@ -186,14 +186,20 @@ TEST(Runner, RefusesAConfigurationItCannotRunNamingTheField)
     EXPECT_THROW(runner::exam_config({}), std::invalid_argument);  // no trajectory, no duration
 }
 
-// A pass a configuration adds: draws nothing, names itself.
-struct NamedPass final : gpu::FramePass {
+// A pass a configuration adds: draws nothing, names itself, counts the frames it is set up for.
+struct NamedPass final : runner::SessionPass {
     explicit NamedPass(const char* n) : n_(n) {}
     const char* name() const override { return n_; }
     gpu::TargetUse target_use() const override { return gpu::TargetUse::none(); }
     void record(const gpu::PassContext&) override { ++recorded; }
+    void set(const session::SessionView& state, VkExtent2D) override
+    {
+        ++set_up;
+        last_time_s = state.time_s;
+    }
     const char* n_;
-    int recorded = 0;
+    int recorded = 0, set_up = 0;
+    double last_time_s = -1;
 };
 
 TEST(Runner, TheFramesPassesComeInOrderAndAConfigurationExtendsThem)
@@ -220,6 +226,8 @@ TEST(Runner, TheFramesPassesComeInOrderAndAConfigurationExtendsThem)
     r.run();
     ASSERT_NE(ui, nullptr);
     EXPECT_EQ(ui->recorded, 2);  // a frame each step
+    EXPECT_EQ(ui->set_up, 2);    // each given the step's view before it
+    EXPECT_NEAR(ui->last_time_s, r.session().view().time_s, 1e-12);
 }
 
 TEST(ImageCue, OffTheVolumeNoContactOrNone)
