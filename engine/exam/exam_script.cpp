@@ -118,6 +118,12 @@ const char* plan_error_name(PlanError e)
     return "?";
 }
 
+bool turns_far(const Pose& from, const Pose& to, const PlanOptions& o)
+{
+    const double cosine = glm::dot(from.axis_y(), to.axis_y());
+    return cosine < std::cos(o.far_turn_deg * std::numbers::pi / 180.0);
+}
+
 ExamScript plan_exam(const std::vector<StationTruth>& stations, const std::vector<double>& press_mm, const PlanOptions& o)
 {
     if (press_mm.size() != stations.size()) throw std::invalid_argument("plan_exam: one press depth per station");
@@ -128,6 +134,7 @@ ExamScript plan_exam(const std::vector<StationTruth>& stations, const std::vecto
         script.poses.push_back({t, pose});
     };
     bool first = true;
+    Pose previous;
     for (std::size_t i = 0; i < stations.size(); ++i) {
         const bool here = i == o.at && o.error != PlanError::none;
         if (here && o.error == PlanError::skip) continue;
@@ -150,9 +157,15 @@ ExamScript plan_exam(const std::vector<StationTruth>& stations, const std::vecto
         if (first) {
             script.poses.push_back({0.0, lifted});
             first = false;
+        } else if (turns_far(previous, rest, o)) {
+            // round the limb, not through it: out along the last station's beam, across, and in
+            at(o.travel_s, pressed_along_beam(previous, -o.far_lift_mm));
+            at(o.travel_s, pressed_along_beam(rest, -o.far_lift_mm));
+            at(o.lower_s, lifted);
         } else {
             at(o.travel_s, lifted);
         }
+        previous = rest;
         at(o.lower_s, rest);
         at(o.press_s, pressed_along_beam(rest, depth));
         at(o.hold_s, pressed_along_beam(rest, depth));

@@ -56,6 +56,10 @@ struct PlanOptions {
     double press_s = 0.8;      // pressing in [s]
     double hold_s = 0.4;       // holding the deepest press; the call is made at its end [s]
     double release_s = 0.4;    // back to the skin [s]
+    // between stations whose beams differ by more than far_turn_deg (the thigh's front to the back
+    // of the knee) the probe goes round the limb, far_lift_mm out, not through it
+    double far_turn_deg = 20.0;
+    double far_lift_mm = 80.0;
     double light_fraction = 0.25;  // light_press: this fraction of the station's depth
     double excessive_factor = 1.8; // excessive: this times the station's depth
     double oblique_deg = 30.0;     // oblique: the plane tilted about the array this far
@@ -67,5 +71,8 @@ struct PlanOptions {
 // what its error does (a skipped station is neither visited nor called; mimic_called calls the
 // healthy station not compressible).
 ExamScript plan_exam(const std::vector<StationTruth>& stations, const std::vector<double>& press_mm, const PlanOptions& options = {});
+// Whether the probe must go round the limb from the rest pose `from` to `to` (their beams more than
+// options.far_turn_deg apart).
+bool turns_far(const Pose& from, const Pose& to, const PlanOptions& options);
 
 }  // namespace echosim::exam

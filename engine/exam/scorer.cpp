@@ -236,7 +236,8 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
 
     // the truth of the whole leg, not only of the stations: a two-point exam's stations may all be
     // clear over an isolated femoral clot
-    r.dvt_present = !scenario_.anatomy.thrombi.empty();
+    r.dvt_present = !scenario_.anatomy.thrombi.empty() ||
+                    std::any_of(truth_.begin(), truth_.end(), [](const StationTruth& t) { return t.thrombosed; });
     const int n = int(truth_.size());
     r.score = n > 0 ? double(points) / double(3 * n) : 0.0;
     r.passed = r.score >= bands.pass_mark && !missed_thrombus;

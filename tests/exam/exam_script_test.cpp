@@ -97,5 +97,24 @@ TEST(ExamScript, EachPlannedErrorChangesOnlyItsStation)
         for (int i = 0; i < 6; ++i) EXPECT_EQ(with(e).poses[std::size_t(i)].pose.position, correct.poses[std::size_t(i)].pose.position);
 }
 
+
+// From the front of the thigh to the back of the knee the probe goes round the limb: out along the
+// first beam, across, in along the second, never through the leg between them.
+TEST(ExamScript, APlannedExamGoesRoundTheLimbBetweenFarTurnedStations)
+{
+    StationTruth front = station("FV 34", -340), back = station("Popliteal", -420);
+    back.ideal_probe.position = glm::vec3(0, 120, -420);
+    back.ideal_probe.orientation = glm::angleAxis(3.14159265f, glm::vec3(0, 0, 1));  // beam along -y
+    const ExamScript plan = plan_exam({front, back}, {10.0, 10.0});
+    // station 1: 6 poses; then out 80 mm along its beam, across to 80 mm off the second, down to 8 mm
+    ASSERT_EQ(plan.poses.size(), 14u);
+    EXPECT_NEAR(plan.poses[6].pose.position.y, -80.0f, 1e-4f);
+    EXPECT_NEAR(plan.poses[7].pose.position.y, 200.0f, 1e-4f);
+    EXPECT_NEAR(plan.poses[8].pose.position.y, 128.0f, 1e-4f);
+    EXPECT_NEAR(plan.poses[10].pose.position.y, 110.0f, 1e-4f);  // pressed 10 mm along -y
+    // neighbouring stations along the thigh do not
+    EXPECT_EQ(plan_exam({front, station("FV 32", -320)}, {10.0, 10.0}).poses.size(), 12u);
+}
+
 }  // namespace
 }  // namespace echosim::exam

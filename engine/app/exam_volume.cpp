@@ -1,0 +1,54 @@
+#include "app/exam_volume.hpp"
+
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+
+#include "app/bmode_imager.hpp"
+#include "echo/case_volume.hpp"
+#include "scene/leg.hpp"
+
+namespace echosim::app {
+
+std::string anatomy_digest(const echo::Anatomy& a)
+{
+    std::string text;
+    char number[40];
+    auto add = [&](double x) {
+        std::snprintf(number, sizeof number, "%.17g;", x);
+        text += number;
+    };
+    add(a.fat_mm);
+    for (const echo::Thrombus& t : a.thrombi) {
+        text += echo::segment_name(t.segment);
+        text += echo::thrombus_kind_name(t.kind);
+        add(t.start_cm), add(t.extent_cm), add(t.occlusion);
+    }
+    text += "|";
+    for (const echo::LymphNode& n : a.lymph_nodes) add(n.s_cm), add(n.size_mm);
+    std::uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+    std::snprintf(number, sizeof number, "%016llx", static_cast<unsigned long long>(h));
+    return number;
+}
+
+VolumePair exam_volume(const exam::Scenario& scenario, bool coarse, const gpu::ContextOptions& gpu,
+                       const std::function<void(const std::string&, double)>& progress)
+{
+    echo::CaseVolumeOptions options;
+    if (coarse) {
+        options.voxel_mm = 0.6;
+        options.pixel_mm = 0.3;
+        options.frames /= 4;
+    }
+    options.imager = bmode_imager_factory(gpu, "echosim exam");
+    std::string id;  // the case's id kept to what a folder name may hold everywhere
+    for (char c : scenario.id) id += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    const std::string stem = "exam-" + id + "-" + anatomy_digest(scenario.anatomy).substr(0, 12) + (coarse ? "-coarse" : "");
+    return cached_volume(cache_entry_name(stem), "case " + scenario.id + "'s volume", [&] {
+        const scene::LegModel leg;
+        return echo::make_case_volume(leg, scenario.anatomy, options, progress);
+    }, progress);
+}
+
+}  // namespace echosim::app

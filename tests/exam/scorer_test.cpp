@@ -1,0 +1,186 @@
+// The scorer judged on synthetic exams whose truth is known by construction: a straight vein along
+// z 25 mm under the skin, its artery 15 mm beside it, stations on it; each test makes one error (or
+// none) and expects exactly that error.
+#include <cmath>
+#include <numbers>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "echo/phantom.hpp"
+#include "exam/scorer.hpp"
+
+namespace echosim::exam {
+namespace {
+
+constexpr double kDepth = 25.0;   // vein below the face [mm]
+constexpr double kArteryX = 15.0; // artery beside it along the array [mm]
+
+StationTruth station(const char* name, double z, bool thrombosed = false, bool mimic = false)
+{
+    StationTruth t;
+    t.name = name;
+    t.segment = echo::VeinSegment::fv;
+    t.s_cm = -z / 10;
+    t.vein = {glm::dvec3(0, kDepth, z), glm::dvec3(0, 0, 1), 4.0};
+    t.artery = {glm::dvec3(kArteryX, kDepth, z), glm::dvec3(0, 0, 1), 3.5};
+    t.thrombosed = thrombosed;
+    t.mimic_nearby = mimic;
+    t.ideal_probe.position = glm::vec3(0, 0, float(z));
+    return t;
+}
+
+Scenario scenario()
+{
+    Scenario s;
+    s.id = "synthetic";
+    s.bands.adequate_force_N = 5;
+    s.bands.excessive_force_N = 30;
+    return s;
+}
+
+Pose at(double x, double z, double tilt_deg = 0)
+{
+    Pose p;
+    p.position = glm::vec3(float(x), 0, float(z));
+    // a tilt about the array's axis turns the plane away from transverse
+    p.orientation = glm::angleAxis(float(tilt_deg * std::numbers::pi / 180), glm::vec3(1, 0, 0));
+    return p;
+}
+
+// Presses at `pose` up to `peak` N over 1 s (100 samples) and back, from `t0` [s]; returns the end time.
+double press(Scorer& scorer, const Pose& pose, double peak, double t0)
+{
+    echo::EchoFrame frame;
+    frame.face = pose;
+    for (int i = 0; i <= 100; ++i) {
+        const double t = t0 + 0.02 * i;
+        const double f = peak * (i <= 50 ? i / 50.0 : (100 - i) / 50.0);
+        frame.time_s = t;
+        scorer.observe({t, pose, f, &frame});
+    }
+    return t0 + 2.0;
+}
+
+std::vector<ErrorKind> kinds(const ExamReport& r)
+{
+    std::vector<ErrorKind> k;
+    for (const FlaggedError& e : r.errors) k.push_back(e.kind);
+    return k;
+}
+
+ExamReport finish(const Scorer& s) { return s.finish({}, {}); }
+
+TEST(Scorer, CorrectExamHasNoErrorsAndFindsTheClot)
+{
+    Scorer s(scenario(), {station("FV 10", -100), station("FV 12", -120, true)});
+    double t = press(s, at(0, -100), 8, 0);
+    s.call(t, Call::compressible);
+    t = press(s, at(0, -120), 8, t);
+    s.call(t, Call::not_compressible);
+    const ExamReport r = finish(s);
+    EXPECT_TRUE(r.errors.empty()) << error_name(r.errors.front().kind) << ": " << r.errors.front().detail;
+    ASSERT_EQ(r.stations.size(), 2u);
+    EXPECT_TRUE(r.stations[0].reached && r.stations[1].reached);
+    EXPECT_NEAR(r.stations[0].peak_force_N, 8.0, 1e-9);
+    EXPECT_DOUBLE_EQ(r.score, 1.0);
+    EXPECT_TRUE(r.passed);
+    EXPECT_NE(r.conclusion.find("FV 12"), std::string::npos) << r.conclusion;
+    EXPECT_DOUBLE_EQ(r.osaus.decision, 5);
+    // the path: from the first station to the second, 20 mm
+    EXPECT_NEAR(r.motion.path_mm, 20.0, 1e-3);
+}
+
+TEST(Scorer, TooLittlePressureOnly)
+{
+    Scorer s(scenario(), {station("FV 10", -100)});
+    s.call(press(s, at(0, -100), 3, 0), Call::compressible);
+    const ExamReport r = finish(s);
+    EXPECT_EQ(kinds(r), std::vector<ErrorKind>{ErrorKind::too_little_pressure});
+    EXPECT_NEAR(r.score, 2.0 / 3.0, 1e-12);  // reached and called right, not adequately pressed
+}
+
+TEST(Scorer, ExcessiveForceOnly)
+{
+    Scorer s(scenario(), {station("FV 10", -100)});
+    s.call(press(s, at(0, -100), 40, 0), Call::compressible);
+    EXPECT_EQ(kinds(finish(s)), std::vector<ErrorKind>{ErrorKind::excessive_force});
+}
+
+TEST(Scorer, SkippedStationOnly)
+{
+    Scorer s(scenario(), {station("FV 10", -100), station("FV 12", -120)});
+    s.call(press(s, at(0, -100), 8, 0), Call::compressible);
+    const ExamReport r = finish(s);
+    ASSERT_EQ(kinds(r), std::vector<ErrorKind>{ErrorKind::skipped_station});
+    EXPECT_EQ(r.errors[0].station, "FV 12");
+    EXPECT_FALSE(r.stations[1].reached);
+    EXPECT_NE(r.conclusion.find("Incomplete"), std::string::npos);
+}
+
+TEST(Scorer, ObliquePlaneOnly)
+{
+    Scorer s(scenario(), {station("FV 10", -100)});
+    s.call(press(s, at(0, -100, 30), 8, 0), Call::compressible);
+    const ExamReport r = finish(s);
+    EXPECT_EQ(kinds(r), std::vector<ErrorKind>{ErrorKind::oblique_plane});
+    EXPECT_FALSE(r.stations[0].reached);
+    EXPECT_NEAR(r.stations[0].angle_deg, 30.0, 0.01);
+}
+
+TEST(Scorer, ArteryPressedInsteadOfTheVein)
+{
+    Scorer s(scenario(), {station("CFV", -100)});
+    s.call(press(s, at(kArteryX, -100), 8, 0), Call::compressible);
+    const ExamReport r = finish(s);
+    ASSERT_EQ(kinds(r), std::vector<ErrorKind>{ErrorKind::wrong_vessel}) << r.errors.size();
+    EXPECT_NE(r.errors[0].detail.find("artery"), std::string::npos);
+}
+
+TEST(Scorer, LymphNodeCalledAClotAndAMissedClotFails)
+{
+    Scorer s(scenario(), {station("CFV", -100, false, true), station("FV 12", -120, true)});
+    double t = press(s, at(0, -100), 8, 0);
+    s.call(t, Call::not_compressible);
+    t = press(s, at(0, -120), 8, t);
+    s.call(t, Call::compressible);
+    const ExamReport r = finish(s);
+    EXPECT_EQ(kinds(r), (std::vector<ErrorKind>{ErrorKind::mimic_called_clot, ErrorKind::wrong_call}));
+    EXPECT_FALSE(r.passed);  // a thrombosed station called compressible fails whatever the score
+}
+
+// The vein's interior counted in the labels: a disc of radius 4 mm at rest, squeezed to an ellipse
+// of half-height 0.4 mm under the press; 0.1 mm pixels.
+TEST(Scorer, CompressionIsMeasuredInTheDeformedLabels)
+{
+    echo::ImagePlane plane;
+    plane.columns = 400;
+    plane.rows = 500;  // 0.1 x 0.1 mm
+    const StationTruth truth = station("FV 10", -100);
+    auto imager = [&](const echo::EchoFrame& f) {
+        std::vector<std::uint8_t> labels(plane.pixels(), std::uint8_t(echo::Tissue::muscle));
+        const double half_height = f.columns.empty() ? 4.0 : 0.4;
+        for (std::uint32_t r = 0; r < plane.rows; ++r)
+            for (std::uint32_t c = 0; c < plane.columns; ++c) {
+                const double x = (c + 0.5) * plane.pixel_x_mm() - plane.width_mm / 2, y = (r + 0.5) * plane.pixel_y_mm();
+                const double vx = x / 4.0, vy = (y - kDepth) / half_height;
+                const double ax = (x - kArteryX) / 3.5, ay = (y - kDepth) / 3.5;
+                if (vx * vx + vy * vy <= 1) labels[r * plane.columns + c] = std::uint8_t(echo::Tissue::vein_lumen);
+                if (ax * ax + ay * ay <= 1) labels[r * plane.columns + c] = std::uint8_t(echo::Tissue::artery_lumen);
+            }
+        return labels;
+    };
+    echo::EchoFrame pressed;
+    pressed.face = at(0, -100);
+    pressed.columns.resize(plane.columns);
+    const Compression c = measure_compression(truth, pressed, plane, imager);
+    const double pi = std::numbers::pi;
+    EXPECT_NEAR(c.vein_rest_mm2, pi * 16, 0.02 * pi * 16);
+    EXPECT_NEAR(c.vein_pressed_mm2, pi * 4 * 0.4, 0.05 * pi * 1.6);
+    // the artery beside it: the same at rest and pressed, and never counted as the vein
+    EXPECT_NEAR(c.artery_rest_mm2, pi * 3.5 * 3.5, 0.02 * pi * 12.25);
+    EXPECT_DOUBLE_EQ(c.artery_pressed_mm2, c.artery_rest_mm2);
+}
+
+}  // namespace
+}  // namespace echosim::exam
