@@ -73,6 +73,8 @@ struct RecordsOptions {
     int busy_timeout_ms = 5000;  // how long to wait for another process's write before "locked"
 };
 
+// One open database. Use it from one thread at a time (the connection is opened without SQLite's
+// own mutex); several processes may each hold one: SQLite's locks order their writes.
 class Records {
 public:
     static constexpr int kSchemaVersion = 1;
