@@ -56,6 +56,7 @@ int run_render(const RenderArgs& args)
         return kExitBadInput;
     }
     session::SessionOptions options;  // the lock-step clock: only what is asked of the session is simulated
+    options.window_follows_probe = true;  // a --pose anywhere on the leg presses simulated tissue
     if (!read_model_option("render", args.model, options.tissue)) return kExitBadInput;
     DefaultScene scene(options);
     if (!args.pose.empty()) {

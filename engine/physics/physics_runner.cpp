@@ -89,6 +89,51 @@ void PhysicsRunner::step_to(double t)
     while (state_.time + 0.5 * period < t) step_once();
 }
 
+void PhysicsRunner::replace_model(std::shared_ptr<const CompiledModel> model)
+{
+    checked(model);
+    TissueState rest = make_state(*model);
+    replace_model(std::move(model), std::move(rest));
+}
+
+void PhysicsRunner::replace_model(std::shared_ptr<const CompiledModel> model, TissueState rest)
+{
+    if (running_) throw std::logic_error("PhysicsRunner::replace_model while the physics thread runs");
+    checked(model);
+    if (rest.x.size() != Eigen::Index(3 * model->node_count()) || rest.node_scratch.size() != model->node_count())
+        throw std::invalid_argument("PhysicsRunner::replace_model: a state of " + std::to_string(rest.x.size() / 3) + " nodes for a model of " +
+                                    std::to_string(model->node_count()));
+    if (model->node_count() != model_->node_count())
+        throw std::invalid_argument("PhysicsRunner::replace_model: " + std::to_string(model->node_count()) + " nodes, the runner steps " +
+                                    std::to_string(model_->node_count()) + " (its snapshots are sized for them)");
+    if (model->options.threads != model_->options.threads)
+        throw std::invalid_argument("PhysicsRunner::replace_model: " + std::to_string(model->options.threads) + " threads, the runner's team has " +
+                                    std::to_string(model_->options.threads));
+    TissueState next = std::move(rest);
+    next.time = state_.time;
+    next.steps = state_.steps;
+    next.resets = state_.resets;
+    next.probe = state_.probe;
+    model_ = std::move(model);
+    state_ = std::move(next);
+    // no thread steps: this thread is the snapshots' writer until the next step (start() or
+    // step_to hands that role back, with the ordering a thread's start gives)
+    SurfaceSnapshot& s = out_.write_slot();
+    s.time = state_.time;
+    s.step = state_.steps;
+    for (Eigen::Index i = 0; i < state_.x.size(); ++i) s.positions[std::size_t(i)] = float(state_.x[i]);
+    s.probe_force_N = 0;
+    s.contacts = 0;
+    s.cg_iterations = 0;
+    s.resets = state_.resets;
+    out_.publish();
+    LocalContactModel& c = contact_out_.write_slot();
+    c = LocalContactModel{};
+    c.time = state_.time;
+    c.step = state_.steps;
+    contact_out_.publish();
+}
+
 void PhysicsRunner::start()
 {
     if (running_.exchange(true)) return;

@@ -87,7 +87,21 @@ public:
     // wait for it. Set it while no thread steps.
     void set_after_step(std::function<void(std::int64_t step)> hook) { after_step_ = std::move(hook); }
 
-    // the immutable model it steps (any thread), and the tissue model that was compiled
+    // Swaps in another compiled model of as many nodes (the exam window moved: session/session.hpp)
+    // while no thread steps (after stop(), before start(); lock-step: between step_to calls), from
+    // the driver thread. The tissue starts at rest on the new model; the clock, the step count, the
+    // counters and the probe (so it does not enter again from behind its face) carry on. Publishes
+    // the rest state as the latest snapshot and a contact model that says "no contact" at once, so
+    // the driver and the haptic thread (which keeps ticking, reading it) never see the old model's
+    // surface or contact after the swap. Throws std::invalid_argument, changing nothing, for a
+    // model of another node count or thread count, and std::logic_error while the thread runs.
+    void replace_model(std::shared_ptr<const CompiledModel> model);
+    // The same with the new model's rest state made beforehand (make_state(*model), the swap's
+    // longest part: the caller makes it while the physics still steps). Throws
+    // std::invalid_argument for a state not of the model's size.
+    void replace_model(std::shared_ptr<const CompiledModel> model, TissueState rest);
+
+    // the immutable model it steps (any thread but while replace_model runs), and the tissue model that was compiled
     const std::shared_ptr<const CompiledModel>& compiled() const { return model_; }
     const tissue::TissueModel& model() const { return model_->tissue; }
 

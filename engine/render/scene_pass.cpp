@@ -54,27 +54,41 @@ ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkForma
                  "mesh (lit per pixel)",
                  [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, true); })
 {
-    // static geometry goes to device-local memory once
-    static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    static_mesh_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    static_mesh_.index_count = std::uint32_t(meshes.static_mesh.indices.size());
     probe_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     probe_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     probe_.index_count = std::uint32_t(meshes.probe.indices.size());
-    patch_indices_ = upload_buffer(uploads, bytes_of(std::span(meshes.patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    patch_index_count_ = std::uint32_t(meshes.patch_rest.indices.size());
-    patch_vertex_count_ = meshes.patch_rest.vertices.size();
-
     for (int i = 0; i < kFramesInFlight; ++i) {
         Slot& slot = slots_[std::size_t(i)];
         slot.uniforms = gpu::Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::host_visible);
-        slot.patch_vertices = gpu::Buffer(ctx, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
-                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
-        slot.patch_vertices.write(bytes_of(std::span(meshes.patch_rest.vertices)));
         // each slot's set points at its own uniforms for good: bound once, at set-up
         const gpu::Binding uniforms = gpu::Binding::uniform(slot.uniforms);
         descriptors_.bind(i, std::span(&uniforms, 1));
     }
+    upload_leg(uploads, meshes.static_mesh, meshes.patch_rest);
+}
+
+void ScenePass::upload_leg(gpu::CommandPool& uploads, const scene::Mesh& static_mesh, const scene::Mesh& patch_rest)
+{
+    // static geometry goes to device-local memory once per leg
+    static_mesh_.vertices = upload_buffer(uploads, bytes_of(std::span(static_mesh.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    static_mesh_.indices = upload_buffer(uploads, bytes_of(std::span(static_mesh.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    static_mesh_.index_count = std::uint32_t(static_mesh.indices.size());
+    patch_indices_ = upload_buffer(uploads, bytes_of(std::span(patch_rest.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    patch_index_count_ = std::uint32_t(patch_rest.indices.size());
+    patch_vertex_count_ = patch_rest.vertices.size();
+    for (Slot& slot : slots_) {
+        slot.patch_vertices = gpu::Buffer(ctx_, std::max<VkDeviceSize>(1, patch_vertex_count_ * sizeof(scene::Vertex)),
+                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::host_visible);
+        slot.patch_vertices.write(bytes_of(std::span(patch_rest.vertices)));
+    }
+    view_.patch_vertices = {};  // a view of the old patch is not drawn on the new one
+}
+
+void ScenePass::replace_leg(gpu::CommandPool& uploads, const scene::Mesh& static_mesh, const scene::Mesh& patch_rest)
+{
+    // frames in flight still draw the buffers about to be replaced (gpu/frame.hpp, "Lifetime")
+    ctx_.wait_idle();
+    upload_leg(uploads, static_mesh, patch_rest);
 }
 
 // frames in flight may still use the pipeline, the descriptor sets and the slots' buffers

@@ -4,6 +4,10 @@
 // (gpu/frame.hpp); views and overlays load what it leaves. Presenters own the targets and the
 // frame pacing; the pass only records.
 //
+// The leg changes shape when the exam window moves (session/session.hpp, "The exam window": the
+// static mesh's hole goes where the patch goes, and the patch has as many vertices as the window's
+// cells need): replace_leg uploads both again. Rare (a lifted probe's move), never per frame.
+//
 // Frame slots: per slot the pass keeps its own uniform buffer (and descriptor set pointing at it),
 // patch vertex buffer and depth image (the presenter guarantees the GPU is done with a slot before
 // it is recorded again).
@@ -57,6 +61,11 @@ public:
     // What the next frame shows; its patch must have as many vertices as the rest mesh (checked
     // here) and stay valid until that frame is recorded.
     void set_view(const FrameView& view);
+    // The static mesh and the patch of a leg whose exam window moved (session::Session::window_serial
+    // changed), from the next frame recorded. Waits for the frames in flight (they draw the old
+    // buffers: gpu/frame.hpp, "Lifetime"), then uploads through `uploads` (the calling thread's pool)
+    // and waits for that; the next set_view's patch must have as many vertices as `patch_rest`.
+    void replace_leg(gpu::CommandPool& uploads, const scene::Mesh& static_mesh, const scene::Mesh& patch_rest);
     // Where on the target the scene is drawn, from the next frame recorded: beside a panel rather
     // than under it, so the camera frames the leg in the space the trainee sees, and no pixel is
     // shaded to be painted over. The camera's aspect is the area's.
@@ -78,6 +87,7 @@ private:
         gpu::Image depth;
     };
 
+    void upload_leg(gpu::CommandPool& uploads, const scene::Mesh& static_mesh, const scene::Mesh& patch_rest);
     static VkPipeline create_mesh_pipeline(VkDevice device, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
                                            bool lit_per_pixel);
     void draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,

@@ -4,20 +4,63 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <numbers>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
 namespace echosim::session {
 
+namespace {
+
+using Clock_ = std::chrono::steady_clock;
+double ms_since(Clock_::time_point t) { return std::chrono::duration<double, std::milli>(Clock_::now() - t).count(); }
+
+// the tissue's parameters as the session runs them: the options' or the shipped thigh's, each
+// sample's column deepened by tissue_depth_scale (SessionOptions)
+tissue::TissueModel session_parameters(const SessionOptions& o)
+{
+    const double k = o.tissue_depth_scale;
+    if (!std::isfinite(k) || k < 0.25 || k > 4.0)
+        throw std::invalid_argument("SessionOptions::tissue_depth_scale " + std::to_string(k) + ": must be in [0.25, 4]");
+    tissue::TissueModel fitted;
+    if (o.tissue)
+        fitted.samples = *o.tissue;
+    else
+        fitted = read_simulation_parameters();
+    if (k != 1.0)
+        for (double& b : fitted.samples.b) b *= k;
+    return fitted;
+}
+
+std::unique_ptr<const scene::LegModel> start_leg(const SessionOptions& o)
+{
+    scene::LegOptions leg;
+    leg.patch_centre = o.window_centre;
+    return std::make_unique<const scene::LegModel>(leg);
+}
+
+// the shortest signed angle from a to b [rad]
+float angle_from(float a, float b)
+{
+    constexpr float two_pi = 2.0f * std::numbers::pi_v<float>;
+    float d = std::fmod(b - a, two_pi);
+    if (d > 0.5f * two_pi) d -= two_pi;
+    if (d < -0.5f * two_pi) d += two_pi;
+    return d;
+}
+
+}  // namespace
+
 Session::Session(const SessionOptions& options)
-    : options_(options), compiled_(physics::compile_model(options.tissue ? tissue::build_tissue_model(leg_, *options.tissue, options.refine)
-                                                                      : load_simulation_model(leg_, options.refine),
-                                                       options.physics)),
-      physics_(compiled_), mapping_(leg_), deformer_(leg_, compiled_->tissue), indentation_(*compiled_), patch_(leg_.patch().rest.vertices)
+    : options_(options), fitted_(session_parameters(options)),
+      home_mass_(build_simulation_model(scene::LegModel{}, fitted_, options.refine).mass), home_leg_(start_leg(options)), leg_(home_leg_.get()),
+      compiled_(physics::compile_model(window_tissue(*leg_), options.physics)), physics_(compiled_),
+      mapping_(*home_leg_), deformer_(std::make_unique<PatchDeformer>(*leg_, compiled_->tissue)), indentation_(*compiled_),
+      patch_(leg_->patch().rest.vertices)
 {
     echo::check_plane(options_.image);
-    probe_.rest = leg_.probe_rest_pose(0.5f, 0.5f);
+    probe_.rest = leg_->probe_rest_pose(0.5f, 0.5f);
     view_.patch = &patch_;
     view_.echo = &echo_;
     view_.probe = probe_.face();
@@ -35,8 +78,146 @@ Session::~Session() { stop(); }
 
 void Session::stop()
 {
+    stopped_ = true;
     if (haptics_) haptics_->stop();  // first: it commands the physics
     physics_.stop();
+}
+
+tissue::TissueModel Session::window_tissue(const scene::LegModel& leg) const
+{
+    // The fitted parameters hold per sample point, for the skin each point stands for on the home
+    // patch, and the model puts a node's share of them on it whatever skin it covers. The window
+    // has the home patch's size, but its grid is even in the leg's tube parameter, not in
+    // millimetres: where the leg's stations are closer together (the hip, the knee) its rows are
+    // closer, elsewhere farther apart, and the same forces would be spread over less or more skin
+    // (a press at the groin pushed back 30 % less than at home). So each node's column is scaled by
+    // the skin it carries here over what it carries at home, the ratio of its masses (which the
+    // model makes from its share of the area): F_k(c) = w c / (b - a c) = c / (b/w - (a/w) c).
+    // On the home patch w is exactly 1 and the model is the fitted one, bit for bit.
+    tissue::TissueModel m = build_simulation_model(leg, fitted_, options_.refine);
+    for (std::size_t k = 0; k < m.node_count(); ++k) {
+        const double w = m.mass[k] / home_mass_[k];
+        if (w == 1.0) continue;
+        m.a[k] /= w;
+        m.b[k] /= w;
+    }
+    return m;
+}
+
+Session::Window Session::build_window(std::unique_ptr<const scene::LegModel> leg) const
+{
+    Window w;
+    w.compiled = physics::compile_model(window_tissue(*leg), options_.physics);
+    w.rest = physics::make_state(*w.compiled);
+    w.deformer = std::make_unique<PatchDeformer>(*leg, w.compiled->tissue);
+    w.leg = std::move(leg);
+    return w;
+}
+
+Pose Session::commanded_face()
+{
+    if (haptics_) {
+        const haptics::HapticSample& h = haptics_->latest();
+        if (h.tick == 0) return probe_.face();
+        const Eigen::Vector3d& p = h.face.position;
+        const Eigen::Quaterniond& q = h.face.orientation;
+        return Pose{glm::vec3(float(p.x()), float(p.y()), float(p.z())), glm::quat(float(q.w()), float(q.x()), float(q.y()), float(q.z()))};
+    }
+    return probe_.face();
+}
+
+Session::WindowOffset Session::window_offset(const Pose& face) const
+{
+    const scene::LegModel& leg = *leg_;
+    const scene::ExamPatch& w = leg.patch();
+    const scene::LimbCoordinates centre{w.centre_t(), w.centre_theta()};
+    const scene::LimbCoordinates at = leg.limb_coordinates(face.position);
+    const glm::vec3 skin = leg.limb_point(at);
+    WindowOffset o;
+    // along: the rings are planes of constant z, the limb runs towards -z
+    o.along_mm = double(leg.limb_point(centre).z - skin.z);
+    // around: the skin's length at the face's ring from the window's centre angle to the face's
+    const float d = angle_from(centre.theta, at.theta);
+    constexpr int pieces = 8;
+    double around = 0;
+    for (int k = 0; k < pieces; ++k)
+        around += double(glm::length(leg.limb_point({at.t, centre.theta + d * float(k + 1) / pieces}) -
+                                     leg.limb_point({at.t, centre.theta + d * float(k) / pieces})));
+    o.around_mm = d < 0 ? -around : around;
+    o.height_mm = double(glm::dot(face.position - skin, leg.limb_normal(at)));
+    return o;
+}
+
+bool Session::over_model(const Pose& face) const
+{
+    // each corner of the face inside the tissue grid, which covers the patch's (u, v) in
+    // [1/16, 15/16] (tissue/sample_grid.hpp: the sample points' span)
+    const scene::ExamPatch& w = leg_->patch();
+    const double lo = tissue::SampleGrid::u(0), hi = tissue::SampleGrid::u(tissue::SampleGrid::rows - 1);
+    const float half_x = float(kLinearProbe.face_width_mm / 2), half_z = float(kLinearProbe.face_thickness_mm / 2);
+    for (float sx : {-1.0f, 1.0f})
+        for (float sz : {-1.0f, 1.0f}) {
+            const glm::vec3 corner = face.position + sx * half_x * face.axis_x() + sz * half_z * face.axis_z();
+            const scene::LimbCoordinates c = leg_->limb_coordinates(corner);
+            const double u = double(c.t - w.t0) / double(w.t1 - w.t0);
+            const double v = double(angle_from(w.theta0, c.theta)) / double(w.theta1 - w.theta0);
+            if (!(u >= lo && u <= hi && v >= lo && v <= hi)) return false;
+        }
+    return true;
+}
+
+void Session::follow_probe()
+{
+    if (!options_.window_follows_probe || stopped_) return;
+    if (!(physics_.latest().probe_force_N < kLiftedForceN)) return;  // pressing: the window stays
+    const Pose face = commanded_face();
+    const WindowOffset o = window_offset(face);
+    if (std::abs(o.height_mm) > kHoverMm) return;
+    if (std::abs(o.along_mm) <= kZoneAlongMm && std::abs(o.around_mm) <= kZoneAroundMm) return;
+    move_to(leg_->limb_coordinates(face.position), true);
+}
+
+bool Session::move_window(scene::LimbCoordinates centre) { return move_to(centre, false); }
+
+bool Session::move_to(scene::LimbCoordinates centre, bool if_lifted)
+{
+    // cheap first: a window that cannot come nearer (the limb's end) is not built again
+    if (leg_->window_cells(centre) == leg_->patch().cells) return false;
+    const auto start = Clock_::now();
+    scene::LegOptions options = leg_->options();
+    options.patch_centre = centre;
+    Window next = build_window(std::make_unique<const scene::LegModel>(options));
+    const double build_ms = ms_since(start);
+
+    const auto swap_start = Clock_::now();
+    const bool real_time = options_.clock == Clock::real_time;
+    if (real_time) physics_.stop();
+    // real time: the probe may have been pressed while the window was built; it keeps the old one
+    if (if_lifted && !(physics_.latest().probe_force_N < kLiftedForceN)) {
+        if (real_time) physics_.start();
+        ++window_moves_.abandoned;
+        return false;
+    }
+    physics_.replace_model(next.compiled, std::move(next.rest));
+    if (real_time) physics_.start();
+    const double swap_ms = ms_since(swap_start);
+
+    // the driver's side: the deformer (which refers to the old leg) goes before the leg
+    deformer_ = std::move(next.deformer);
+    compiled_ = std::move(next.compiled);
+    indentation_ = IndentationProfile(*compiled_);
+    moved_leg_ = std::move(next.leg);
+    leg_ = moved_leg_.get();
+    patch_ = leg_->patch().rest.vertices;
+    shown_step_ = -1;  // the next view() deforms the new patch from the newest snapshot
+    ++window_serial_;
+    WindowMoves& m = window_moves_;
+    ++m.moves;
+    m.last_build_ms = build_ms;
+    m.max_build_ms = std::max(m.max_build_ms, build_ms);
+    m.last_swap_ms = swap_ms;
+    m.max_swap_ms = std::max(m.max_swap_ms, swap_ms);
+    return true;
 }
 
 void Session::place_probe(const ProbePlacement& placement)
@@ -52,12 +233,13 @@ void Session::place_probe(const ProbePlacement& placement)
 
 void Session::place_probe_on_patch(float u, float v, double press_mm)
 {
-    place_probe({leg_.probe_rest_pose(u, v), press_mm});
+    place_probe({leg_->probe_rest_pose(u, v), press_mm});
 }
 
 void Session::advance(double dt)
 {
     if (!(dt > 0)) throw std::invalid_argument("Session::advance by " + std::to_string(dt) + " s: must be > 0");
+    follow_probe();
     if (haptics_) {
         if (options_.clock == Clock::lock_step) {
             const double end = time_ + dt, h = haptics_->period_s();
@@ -161,7 +343,7 @@ const SessionView& Session::view()
 {
     const physics::SurfaceSnapshot& snap = physics_.latest();
     if (snap.step != shown_step_) {
-        deformer_.apply(snap.positions, patch_);
+        deformer_->apply(snap.positions, patch_);
         shown_step_ = snap.step;
     }
     double press_mm = probe_.press_mm;
@@ -191,6 +373,10 @@ const SessionView& Session::view()
     else
         indentation_.compute(view_.probe, press_mm, snap.positions, options_.image, echo_.columns);
     view_.press_mm = press_mm;
+    view_.in_contact = snap.contacts > 0;
+    view_.over_model = over_model(view_.probe);
+    view_.window_centre = {leg_->patch().centre_t(), leg_->patch().centre_theta()};
+    view_.window_serial = window_serial_;
     view_.probe_force_N = snap.probe_force_N;
     view_.time_s = snap.time;
     view_.resets = snap.resets;

@@ -28,6 +28,33 @@
 // back the same way: the physics publishes a snapshot after every step, and view() reads the newest
 // (the driver thread is its one reader). Nothing else crosses threads.
 //
+// The exam window. The tissue is simulated on a patch of the leg the size of the home patch (about
+// 120 mm along the limb by 75 mm around it, 2500 nodes at refine 7: the largest grid that steps at
+// 1 kHz on one core), and the patch is a window that follows the probe over the whole right leg,
+// from the inguinal ligament to the popliteal fossa. The rule (follow_probe(), at every advance):
+//   - the window moves only while the probe is lifted: the tissue pushes on it less than
+//     kLiftedForceN (off the skin, or resting on it in the gel without pressing), and its face is
+//     within kHoverMm of the skin (a probe waved about the room moves nothing);
+//   - it moves when the face centre has left the window's central zone: more than kZoneAlongMm
+//     along the limb or kZoneAroundMm around it from the window's centre (measured on the skin);
+//   - it then re-centres on the face: a new leg (its static mesh's hole where the window is now),
+//     the tissue model on it, compiled, a new patch deformer; the physics runner swaps the model
+//     in (PhysicsRunner::replace_model: the tissue at rest, the clock and the probe carried on).
+// A probe pressed never has the window moved under it: it presses where it was put down. Pressed
+// near the window's edge it still presses modelled tissue, since the window is three times as long
+// as the face is wide across the beam and the zone keeps the face well inside (along: the face's
+// 10 mm in 105 mm of tissue grid; around: the face's 40 mm in 66 mm); pressed and slid beyond the
+// tissue grid, the face loses the nodes under it (SessionView::over_model says so) until it is lifted
+// and put down again. The window's placement is in window(), its moves counted by window_serial():
+// whoever draws the leg uploads the static mesh and the patch again when that changes
+// (render::ScenePass::replace_leg), and leg() then is the new one.
+// Real time: the new window is built in the driver thread while the physics steps on; then the
+// physics thread is stopped, the model swapped and the thread started again (a fraction of a
+// millisecond; the lift is checked again once it is stopped, and a probe pressed meanwhile keeps
+// the old window). The haptic loop keeps ticking throughout: it renders the contact model the
+// swap publishes ("no contact": the probe was lifted) until the new model's first step. Lock-step:
+// all of it in advance(), on simulated time: runs with moves are repeatable bit for bit.
+//
 // With a device, the haptic loop (haptics/haptic_loop.hpp) is the probe's one commander instead: in
 // real time on its own 1 kHz thread, in lock-step ticked by advance() at its rate, between the
 // physics steps. The driver then feeds the device (the window's mouse and keyboard) or leaves it to
@@ -77,6 +104,24 @@ struct SessionOptions {
     // the device that moves the probe through the haptic loop; none: the driver places it
     std::shared_ptr<device::Device> device;
     haptics::HapticOptions haptics;
+    // The exam window (above): whether it follows the probe, and where it starts (none: the home
+    // patch over the common femoral vein). Off unless asked: the paper's Fig. 8 slide (haptics-demo,
+    // the soak, the haptics bench) starts lifted 19 mm around from the home patch's centre and
+    // slides 38 mm across it pressing, which a window re-centred at its start would not cover; an
+    // exam, `run` and `render` at a pose off the home patch turn it on.
+    bool window_follows_probe = false;
+    std::optional<scene::LimbCoordinates> window_centre;
+    // A patient whose subcutaneous tissue is deeper than the thigh the model was fitted on (a large
+    // patient, issue 31's case files: the fat thickness), as a factor on the depth of the tissue
+    // column under each node: 1 is the fitted thigh (exactly: nothing is scaled), 2 a column twice
+    // as deep. The column is the non-linear spring F(c) = c / (b - a c) (tissue/nonlinear_spring.hpp):
+    // a column k times as deep, of the same tissue, compresses k times as far under the same
+    // force (springs in series), c_k(F) = k c(F) = k b F / (1 + a F), so b becomes k b and a stays:
+    // the rest stiffness 1/b falls by k and the depth where it bottoms out, b/a, grows by k. The
+    // probe then travels k times as far, at the same force, before the tissue stiffens; the echo
+    // side (the vein deeper under more fat, and collapsing under the pressure the force makes over
+    // the face) is the case's phantom's. Within [0.25, 4].
+    double tissue_depth_scale = 1.0;
 };
 
 // The probe the driver holds: resting on the skin at `rest` (the face on the skin, the beam along
@@ -120,6 +165,14 @@ struct SessionView {
     // within the device's limits) and whether the device is there
     double haptic_force_N = 0;
     bool device_connected = true;
+    // the probe against the simulated tissue at the same step: whether it touches the skin (the
+    // step found contacts), whether its face lies over the tissue the window simulates (its
+    // footprint within the window's tissue grid: off it, a press meets nothing), and the window it
+    // is simulated on (its centre, and its serial: a change means the leg must be drawn again)
+    bool in_contact = false;
+    bool over_model = true;
+    scene::LimbCoordinates window_centre;
+    int window_serial = 0;
     // the echographic image's input at the same step: the pressed face, the skin under it per
     // image column (none while the probe does not touch the skin), the pressure of probe_force_N
     // over the face, the time
@@ -133,8 +186,41 @@ public:
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;
 
-    const scene::LegModel& leg() const { return leg_; }
+    // The leg with the exam window where it is now: a new object each time the window moves
+    // (window_serial() counts the moves), so a reference to it holds until the next advance().
+    const scene::LegModel& leg() const { return *leg_; }
     static constexpr double kMaxPressMm = 25.0;  // the deepest the driver may press [mm]
+
+    // The exam window (above): the patch the tissue is simulated on (its cells and extent on the
+    // exam limb), and how many times it has moved.
+    const scene::ExamPatch& window() const { return leg_->patch(); }
+    int window_serial() const { return window_serial_; }
+    static constexpr double kLiftedForceN = 0.5;  // [N] the probe counts as lifted below this push
+    static constexpr double kHoverMm = 40.0;      // [mm] the face within this of the skin, outside or in
+    static constexpr double kZoneAlongMm = 20.0;  // [mm] the central zone's half-length along the limb
+    static constexpr double kZoneAroundMm = 8.0;  // [mm] and its half-width around it
+    // Where a face centre lies from the window's centre, along the limb (towards the foot) and
+    // around it (towards the window's increasing theta) [mm], on the skin; and its height above it.
+    struct WindowOffset {
+        double along_mm = 0, around_mm = 0, height_mm = 0;
+    };
+    WindowOffset window_offset(const Pose& face) const;
+    // Whether the whole face (40 by 10 mm) of a probe at `face` lies over the window's tissue grid.
+    bool over_model(const Pose& face) const;
+    // Moves the window now to be centred as near `centre` as whole leg cells allow, pressing or not
+    // (a scripted exam's start, tests, a driver that knows better); false when it is there already.
+    // The same swap as a move that follows the probe, without the lift check.
+    bool move_window(scene::LimbCoordinates centre);
+    // How the moves went: how many, and how long the last and the longest took in the driver
+    // thread: building the new window (the physics steps on meanwhile in real time), and the swap
+    // itself (real time: the physics thread stopped; the haptic loop renders "no contact").
+    struct WindowMoves {
+        int moves = 0;
+        int abandoned = 0;  // real time: built, but the probe was pressed by the time of the swap
+        double last_build_ms = 0, max_build_ms = 0;
+        double last_swap_ms = 0, max_swap_ms = 0;
+    };
+    const WindowMoves& window_moves() const { return window_moves_; }
 
     const tissue::TissueModel& tissue_model() const { return compiled_->tissue; }
     const physics::CompiledModel& compiled_model() const { return *compiled_; }
@@ -183,16 +269,41 @@ public:
     void stop();
 
 private:
+    struct Window {
+        std::unique_ptr<const scene::LegModel> leg;
+        std::shared_ptr<const physics::CompiledModel> compiled;
+        physics::TissueState rest;  // the tissue at rest on it, made before the swap
+        std::unique_ptr<PatchDeformer> deformer;
+    };
+    Window build_window(std::unique_ptr<const scene::LegModel> leg) const;
+    // the tissue model on `leg`'s window: the fitted parameters, each node's column scaled to the
+    // skin it carries there against what it carries on the home patch
+    tissue::TissueModel window_tissue(const scene::LegModel& leg) const;
+    // the probe's face as the physics is commanded it now (the device's, with one)
+    Pose commanded_face();
+    // the rule above; at the start of every advance()
+    void follow_probe();
+    // builds the window at `centre` and swaps it in; `if_lifted`: only if the probe is still
+    // lifted once the physics is stopped. False when it did not move.
+    bool move_to(scene::LimbCoordinates centre, bool if_lifted);
+
     SessionOptions options_;
-    scene::LegModel leg_;
+    tissue::TissueModel fitted_;  // the tissue's parameters (scaled by tissue_depth_scale), fit and provenance
+    std::vector<double> home_mass_;  // each node's mass on the home patch (its share of the skin)
+    std::unique_ptr<const scene::LegModel> home_leg_;  // where the window starts; the device mapping's, for good
+    std::unique_ptr<const scene::LegModel> moved_leg_;  // the window's leg once it has moved
+    const scene::LegModel* leg_ = nullptr;               // the one of the two the window is on
     std::shared_ptr<const physics::CompiledModel> compiled_;
     physics::PhysicsRunner physics_;
     haptics::ProbeMapping mapping_;
     std::unique_ptr<haptics::HapticLoop> haptics_;  // with a device
     std::string haptics_note_;
     double haptic_time_ = 0;  // lock-step: the last tick's time [s]
-    PatchDeformer deformer_;
+    std::unique_ptr<PatchDeformer> deformer_;
     IndentationProfile indentation_;
+    int window_serial_ = 0;
+    WindowMoves window_moves_;
+    bool stopped_ = false;  // stop() was called: nothing starts the physics thread again
     ProbePlacement probe_;
     double sent_press_mm_ = 0;  // the press of the last command sent [mm]
     double time_ = 0;
