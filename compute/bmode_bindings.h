@@ -44,7 +44,7 @@ namespace echosim::kernels {
 #define BMODE_LATERAL_GROUP_X 16  // runs of 4 pixels
 #define BMODE_LATERAL_GROUP_Y 4
 
-#define BMODE_MAX_TISSUES 16
+#define BMODE_MAX_TISSUES 32
 #define BMODE_MAX_PLANES 32  // elevational planes
 #define BMODE_MAX_TAPS 128   // taps of the axial or the lateral point-spread function (2 radius + 1)
 #define BMODE_MAX_FRAMES 32  // frames in one batch
