@@ -4,16 +4,25 @@
 // explicit integrator at the largest time step that stays stable (found here by halving), so the
 // two can be compared by simulated seconds per wall-clock second; and, from 2500 nodes on, the
 // implicit one with the step's sweeps shared by every core (up to 8).
+// The exam window (session/session.hpp): the same 2500-node press on windows moved to the adductor
+// canal and the popliteal fossa (the rate over the whole exam region: a window anywhere steps the
+// same grid), and one real-time row that moves a session's window back and forth between them while
+// the haptic loop ticks (the probe held lifted, as the rule has it): how long a move takes in the
+// driver thread (building the window while the physics steps on; the swap, with the physics thread
+// stopped) and what the haptic loop did meanwhile.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <thread>
 
 #include "bench/suites.hpp"
 #include "core/assets.hpp"
+#include "device/scripted_device.hpp"
 #include "physics/simulation.hpp"
 #include "scene/leg.hpp"
+#include "session/session.hpp"
 #include "tissue/tissue_json.hpp"
 
 namespace echosim::bench {
@@ -46,6 +55,98 @@ Run make_run(const PhysicsFixture& f, int refine, const physics::PhysicsOptions&
 {
     return Run{physics::Simulation(physics::compile_model(tissue::build_tissue_model(f.leg, f.fitted, refine), o)),
                f.leg.probe_rest_pose(0.5f, 0.5f)};
+}
+
+// the exam window's sites: the FV in the adductor canal, the popliteal vein from behind the knee
+scene::LimbCoordinates window_site(const scene::LegModel& leg, bool popliteal)
+{
+    return popliteal ? scene::LimbCoordinates{leg.limb_t_at_z(-450.0f), 0.785f}
+                     : scene::LimbCoordinates{leg.limb_t_at_z(-300.0f), leg.patch().centre_theta()};
+}
+
+// The session's tissue on a window at `site` (its columns scaled to the skin there, as the session
+// runs it), pressed and slid on as the home rows are.
+void window_steps(benchmark::State& state, const PhysicsFixture& f, bool popliteal, physics::PhysicsOptions o)
+{
+    session::SessionOptions so;
+    so.window_centre = window_site(f.leg, popliteal);
+    so.physics = o;
+    const session::Session s(so);
+    Run r{physics::Simulation(physics::compile_model(s.tissue_model(), o)), s.leg().probe_rest_pose(0.5f, 0.5f)};
+    double t = 0;
+    for (; t < 0.15; t += o.time_step) {
+        place_probe(r, t);
+        r.sim.step();
+    }
+    long steps = 0;
+    for (auto _ : state) {
+        place_probe(r, t);
+        r.sim.step();
+        t += o.time_step;
+        ++steps;
+    }
+    state.counters["nodes"] = double(r.sim.model->node_count());
+    state.counters["steps_per_s"] = benchmark::Counter(double(steps), benchmark::Counter::kIsRate);
+    state.counters["contacts"] = r.sim.state.last.contacts;
+    state.counters["probe_force_N"] = r.sim.state.last.probe_force_N;
+    state.counters["resets"] = r.sim.state.resets;
+    state.counters["window_z_mm"] = s.leg().limb_point(s.window().centre).z;
+}
+
+// Real time: a session with the haptic loop running (a scripted hand holding the probe 10 mm over
+// the home patch's centre), its window moved `moves` times between the canal and the popliteal
+// fossa, 0.1 s apart; with `moves` 0, the same spell with nothing moved (the loop's own figures on
+// this machine, under the same load, to read the others against).
+void window_moves(benchmark::State& state, const PhysicsFixture& f, int moves)
+{
+    constexpr int spells = 20;
+    for (auto _ : state) {
+        const Pose held = pressed_along_beam(f.leg.probe_rest_pose(0.5f, 0.5f), -10.0);
+        const device::TrajectoryRow row{0.0, Eigen::Vector3d(held.position.x, held.position.y, held.position.z),
+                                        Eigen::Quaterniond(held.orientation.w, held.orientation.x, held.orientation.y, held.orientation.z).normalized()};
+        session::SessionOptions o;
+        o.clock = session::Clock::real_time;
+        o.device = std::make_shared<device::ScriptedDevice>(device::Trajectory::parse(device::format_trajectory({row}), "held"), "held");
+        session::Session s(o);
+        haptics::HapticLoop& loop = *s.haptic_loop();
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        loop.restart_window();
+        const std::int64_t ticks0 = loop.ticks();
+        const physics::RunnerStats physics0 = s.physics_stats();
+        const auto start = std::chrono::steady_clock::now();
+        double build_sum = 0, swap_sum = 0, felt_max = 0;
+        for (int i = 0; i < spells; ++i) {
+            if (i < moves) {
+                s.move_window(window_site(f.leg, i % 2 == 1));
+                build_sum += s.window_moves().last_build_ms;
+                swap_sum += s.window_moves().last_swap_ms;
+            }
+            for (int k = 0; k < 6; ++k) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(16));
+                s.advance(0.016);
+                felt_max = std::max(felt_max, s.view().haptic_force_N);
+            }
+        }
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const std::int64_t ticks = loop.ticks() - ticks0;
+        const physics::RunnerStats physics1 = s.physics_stats();
+        s.stop();
+        const haptics::PeriodStats p = loop.stats();
+        const session::Session::WindowMoves& m = s.window_moves();
+        state.counters["moves"] = m.moves;
+        state.counters["build_ms_mean"] = moves > 0 ? build_sum / moves : 0.0;
+        state.counters["build_ms_max"] = m.max_build_ms;
+        state.counters["swap_ms_mean"] = moves > 0 ? swap_sum / moves : 0.0;
+        state.counters["swap_ms_max"] = m.max_swap_ms;
+        state.counters["haptic_rate_hz"] = double(ticks) / elapsed;
+        state.counters["haptic_late_max_ms"] = p.window_max_late_ms;
+        state.counters["haptic_period_p99_err_ms"] = p.error_quantile_ms(0.99);
+        state.counters["haptic_missed_deadlines"] = double(p.missed_deadlines);
+        state.counters["haptic_felt_max_N"] = felt_max;
+        state.counters["physics_rate_hz"] = double(physics1.steps - physics0.steps) / elapsed;
+        state.counters["physics_overruns"] = double(physics1.overruns - physics0.overruns);
+        state.SetLabel(s.haptics_note().empty() ? "haptic loop real-time" : "haptic loop: " + s.haptics_note());
+    }
 }
 
 // Simulates `seconds`; false if the state had to be reset (unstable).
@@ -127,6 +228,18 @@ std::shared_ptr<void> register_physics(const SuiteOptions& options)
         if (refine <= 7) add(refine, physics::Integrator::explicit_euler, physics::JacobianMode::updated);
         if (refine >= 7 && cores > 1) add(refine, physics::Integrator::implicit_euler, physics::JacobianMode::updated, std::min(cores, 8));
     }
+    for (const bool popliteal : {false, true})
+        benchmark::RegisterBenchmark(popliteal ? "physics/2500/implicit/updated/window-popliteal" : "physics/2500/implicit/updated/window-canal",
+                                     [f = fixture.get(), popliteal](benchmark::State& s) { window_steps(s, *f, popliteal, physics::PhysicsOptions{}); })
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->MinTime(options.min_time_s);
+    for (const int moves : {20, 0})
+        benchmark::RegisterBenchmark(moves ? "physics/window-move/realtime" : "physics/window-move/realtime/held",
+                                     [f = fixture.get(), moves](benchmark::State& s) { window_moves(s, *f, moves); })
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->Iterations(1);
     return fixture;
 }
 
