@@ -35,6 +35,8 @@ const std::vector<Suite>& suites()
         {"haptics", "the 1 kHz haptic loop's period error over 30 s with the physics and headless rendering running; one force computation",
          register_haptics, true},
         {"arm", "the force path in real time through the simulated arm (its servo, the haptic loop, the physics) over 10 s", register_arm, false},
+        {"exam", "the shipped extended exam of the healthy case headless in lock-step: frames at 10 per simulated second, and images at "
+                 "the stations only, against real time", register_exam, true},
         {"bmode", "B-mode synthesis of sweep frames (scatterers, beam, PSF, log compression) at 400x500, 512x512, 1024x1024, frames/s",
          register_bmode, true},
     };

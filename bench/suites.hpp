@@ -14,6 +14,7 @@ std::shared_ptr<void> register_reconstruct(const SuiteOptions& options);
 std::shared_ptr<void> register_slice(const SuiteOptions& options);
 std::shared_ptr<void> register_haptics(const SuiteOptions& options);
 std::shared_ptr<void> register_arm(const SuiteOptions& options);
+std::shared_ptr<void> register_exam(const SuiteOptions& options);
 std::shared_ptr<void> register_bmode(const SuiteOptions& options);
 
 }  // namespace echosim::bench

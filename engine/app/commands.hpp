@@ -195,4 +195,31 @@ struct CaseArgs {
 };
 int run_case(const CaseArgs& args);
 
+// `echosim case plan` (app/cmd_case_plan.cpp): a case's scripted exams.
+struct CasePlanArgs {
+    std::filesystem::path scenario;  // a case file; empty: --case
+    std::string case_id;             // a shipped case (empty: healthy)
+    std::string style = "correct";   // correct or an error (exam::plan_error_name)
+    int at = -1;                     // the station the error happens at (-1: one that fits it)
+    std::filesystem::path out;       // the script
+    std::filesystem::path all;       // every shipped case's correct exam and errors, into this folder
+};
+int run_case_plan(const CasePlanArgs& args);
+
+// `echosim exam` (app/cmd_exam.cpp): a scripted exam, headless and repeatable to the byte.
+struct ExamArgs {
+    GpuArgs gpu;
+    std::filesystem::path scenario;    // a case file; empty: --case
+    std::string case_id;               // a shipped case's id, or "random" (empty: healthy)
+    std::uint64_t seed = 1;            // --case random's draw
+    std::filesystem::path trajectory;  // the exam's script; empty: the case's shipped correct exam
+    std::filesystem::path out;         // the report's folder
+    double frames_per_s = 10;          // frames written per simulated second (0: images at the stations only)
+    std::string trainee = "scripted";
+    std::filesystem::path records;     // empty: the user's default database
+    bool no_records = false;
+    bool coarse = false;               // the case's volume at 0.6 mm (seconds to make): tests and benchmarks
+};
+int run_exam(const ExamArgs& args);
+
 }  // namespace echosim::app

@@ -1,6 +1,5 @@
 #include "app/exam_volume.hpp"
 
-#include <cctype>
 #include <cstdint>
 #include <cstdio>
 
@@ -42,9 +41,8 @@ VolumePair exam_volume(const exam::Scenario& scenario, bool coarse, const gpu::C
         options.frames /= 4;
     }
     options.imager = bmode_imager_factory(gpu, "echosim exam");
-    std::string id;  // the case's id kept to what a folder name may hold everywhere
-    for (char c : scenario.id) id += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    const std::string stem = "exam-" + id + "-" + anatomy_digest(scenario.anatomy).substr(0, 12) + (coarse ? "-coarse" : "");
+    // by the anatomy alone: cases that differ only in their stations or bands share one volume
+    const std::string stem = "exam-" + anatomy_digest(scenario.anatomy).substr(0, 12) + (coarse ? "-coarse" : "");
     return cached_volume(cache_entry_name(stem), "case " + scenario.id + "'s volume", [&] {
         const scene::LegModel leg;
         return echo::make_case_volume(leg, scenario.anatomy, options, progress);

@@ -1,7 +1,7 @@
 // The echographic volume of an exam's case (issue 31 item 2): its anatomy (the fat, the thrombi
 // per segment, the mimics) imaged and reconstructed over everywhere the probe can go, made on first
-// use and cached under a name that carries the case's id and a digest of its anatomy, so an
-// instructor's edited case is made anew and an unchanged one is not.
+// use and cached under a digest of its anatomy, so an instructor's edited anatomy is made anew, and cases
+// that differ only in their stations or bands share one volume.
 #pragma once
 
 #include <functional>

@@ -221,6 +221,37 @@ int main(int argc, char** argv)
         ->add_option("files", case_args.files, "case files (JSON, assets/cases/scenario.schema.json)")
         ->required();
     case_cmd->add_subcommand("list", "the shipped cases: id and title")->callback([&case_args] { case_args.action = "list"; });
+    CasePlanArgs plan_args;
+    auto* plan_cmd = case_cmd->add_subcommand(
+        "plan", "write a case's scripted exam: the correct one, or one making a classic error at one station, each station pressed "
+                "into the case's adequate force band on the simulated tissue");
+    auto* plan_scenario = plan_cmd->add_option("--scenario", plan_args.scenario, "a case file");
+    plan_cmd->add_option("--case", plan_args.case_id, "a shipped case's id")->excludes(plan_scenario);
+    plan_cmd->add_option("--style", plan_args.style, "correct, skip, light-press, oblique, artery, excessive or mimic-called");
+    plan_cmd->add_option("--at", plan_args.at, "the station (from 0) the error happens at (default: one that fits it)");
+    auto* plan_out = plan_cmd->add_option("--out", plan_args.out, "the script (CSV)");
+    plan_cmd->add_option("--all", plan_args.all, "every shipped case's correct exam and errors, into this folder")->excludes(plan_out);
+    plan_cmd->callback([&case_args] { case_args.action = "plan"; });
+
+    ExamArgs exam_args;
+    auto* exam_cmd = app.add_subcommand(
+        "exam",
+        "a scripted compression exam, headless and repeatable to the byte: the case's probe script played on simulated time, every "
+        "station scored from the simulation's truth; writes frames, the image at each station's deepest press, force.csv, "
+        "report.json, report.html and summary.png into --out, and stores the exam in the trainee records");
+    auto* exam_scenario = exam_cmd->add_option("--scenario", exam_args.scenario, "a case file (assets/cases/README.md)");
+    exam_cmd->add_option("--case", exam_args.case_id, "a shipped case's id (echosim case list), or random")->excludes(exam_scenario);
+    exam_cmd->add_option("--seed", exam_args.seed, "--case random's draw");
+    exam_cmd->add_option("--trajectory", exam_args.trajectory,
+                         "the exam's script: a trajectory CSV with an optional last column 'call' (compressible, not-compressible); "
+                         "default: the case's shipped correct exam");
+    exam_cmd->add_option("--out", exam_args.out, "the report's folder")->required();
+    exam_cmd->add_option("--frames-per-s", exam_args.frames_per_s, "frames written per simulated second (0: images at the stations only)");
+    exam_cmd->add_option("--trainee", exam_args.trainee, "the trainee's name, for the records");
+    exam_cmd->add_option("--records", exam_args.records, "the trainee records database (default: in the user's data folder)");
+    exam_cmd->add_flag("--no-records", exam_args.no_records, "do not store the exam in the records");
+    exam_cmd->add_flag("--coarse", exam_args.coarse, "make the case's volume at 0.6 mm, in seconds (tests, benchmarks)");
+    add_gpu_options(exam_cmd, exam_args.gpu);
 
     RecordsArgs records_args;
     auto* records_cmd = app.add_subcommand(
@@ -265,7 +296,9 @@ int main(int argc, char** argv)
         if (demo_cmd->parsed()) return run_haptics_demo(demo);
         if (devices_cmd->parsed()) return run_devices(devices);
         if (soak_cmd->parsed()) return run_soak(soak);
+        if (case_cmd->parsed() && case_args.action == "plan") return run_case_plan(plan_args);
         if (case_cmd->parsed()) return run_case(case_args);
+        if (exam_cmd->parsed()) return run_exam(exam_args);
         if (records_cmd->parsed())
             return records_export_cmd->parsed() ? run_records_export(records_args)
                    : records_add_cmd->parsed()  ? run_records_add(records_args)

@@ -87,6 +87,9 @@ TEST(Scorer, CorrectExamHasNoErrorsAndFindsTheClot)
     EXPECT_TRUE(r.passed);
     EXPECT_NE(r.conclusion.find("FV 12"), std::string::npos) << r.conclusion;
     EXPECT_DOUBLE_EQ(r.osaus.decision, 5);
+    // the case's bands, for the report's force trace
+    EXPECT_DOUBLE_EQ(r.adequate_force_N, 5);
+    EXPECT_DOUBLE_EQ(r.excessive_force_N, 30);
     // the path: from the first station to the second, 20 mm
     EXPECT_NEAR(r.motion.path_mm, 20.0, 1e-3);
 }
