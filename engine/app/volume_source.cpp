@@ -22,7 +22,9 @@ namespace echosim::app {
 namespace {
 
 // Bump when the phantom, the B-mode model, the sweep or the reconstruction change what they make.
-constexpr const char* kRecipe = "v1";
+// v2: the B-mode model of the GPU kernels (issue 33); v3: the whole proximal vein course, its sweep
+// and 0.4 mm voxels (issue 31)
+constexpr const char* kRecipe = "v3";
 
 // A cached pair's folder while it is being written is NAME io::kPartialMarker PID-SIX.
 using io::kPartialMarker;
@@ -113,13 +115,30 @@ std::filesystem::path cache_folder()
 
 std::filesystem::path case_volume_folder(echo::Case which)
 {
-    return cache_folder() / "volumes" / (std::string(echo::case_name(which)) + "-0.3mm-" + kRecipe);
+    char voxel[32];
+    std::snprintf(voxel, sizeof voxel, "-%gmm-", echo::CaseVolumeOptions{}.voxel_mm);
+    return cache_folder() / "volumes" / (std::string(echo::case_name(which)) + voxel + kRecipe);
 }
 
 VolumePair case_volume(echo::Case which, const std::function<void(const std::string&, double)>& progress)
 {
-    const std::filesystem::path folder = case_volume_folder(which);
-    const std::string name = folder.filename().string();
+    const std::string name = case_volume_folder(which).filename().string();
+    const std::string what = "the " + std::string(echo::case_name(which)) + " case's volume";
+    return cached_volume(name, what, [&] {
+        const scene::LegModel leg;
+        // imaged on the GPU when a device is at hand (the one ECHOSIM_GPU names, else the best)
+        echo::CaseVolumeOptions options;
+        options.imager = bmode_imager_factory(gpu::ContextOptions::from_environment(), "echosim");
+        return echo::make_case_volume(leg, which, options, progress);
+    }, progress);
+}
+
+std::string cache_entry_name(const std::string& stem) { return stem + "-" + kRecipe; }
+
+VolumePair cached_volume(const std::string& name, const std::string& what, const std::function<echo::CaseVolume()>& make,
+                         const std::function<void(const std::string&, double)>& progress)
+{
+    const std::filesystem::path folder = cache_folder() / "volumes" / name;
     const std::filesystem::path volume_file = folder / "volume.nrrd", labels_file = folder / "labels.nrrd";
     std::error_code ec;
     // pairs that runs killed while making them left half written (any case's, any recipe's)
@@ -127,7 +146,7 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     if (std::filesystem::exists(volume_file) && std::filesystem::exists(labels_file)) {
         try {
             VolumePair pair = user_volume(volume_file, labels_file);
-            pair.description = "the " + std::string(echo::case_name(which)) + " case's volume, cached in " + folder.string();
+            pair.description = what + ", cached in " + folder.string();
             return pair;
         } catch (const std::exception& e) {
             // a damaged cache is only a cache: say so and make it anew
@@ -136,11 +155,7 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
         }
     }
 
-    const scene::LegModel leg;
-    // imaged on the GPU when a device is at hand (the one ECHOSIM_GPU names, else the best)
-    echo::CaseVolumeOptions options;
-    options.imager = bmode_imager_factory(gpu::ContextOptions::from_environment(), "echosim");
-    echo::CaseVolume made = echo::make_case_volume(leg, which, options, progress);
+    echo::CaseVolume made = make();
     // the pair into a folder of its own (locked while this run lives: io/owned_temp.hpp), renamed
     // into place whole
     std::filesystem::create_directories(folder.parent_path(), ec);
@@ -166,7 +181,7 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
     if (moved && !std::filesystem::exists(volume_file))
         throw std::runtime_error("cannot move the volume into the cache at " + folder.string() + ": " + moved.message());
     VolumePair pair{std::make_shared<io::Volume>(std::move(made.volume)), std::make_shared<io::Volume>(std::move(made.labels)),
-                    "the " + std::string(echo::case_name(which)) + " case's volume, made and cached in " + folder.string()};
+                    what + ", made and cached in " + folder.string()};
     return pair;
 }
 

@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 
+#include "echo/case_volume.hpp"
 #include "echo/phantom.hpp"
 #include "io/nrrd.hpp"
 
@@ -36,6 +37,14 @@ std::filesystem::path case_volume_folder(echo::Case which);
 // how far it is, 0..1) and cached. Throws std::runtime_error naming the folder when the cache
 // cannot be written, io::NrrdError naming the file when a cached one cannot be read.
 VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress);
+
+// The pair cached under `name` (a folder in the cache's volumes/: cache_entry_name gives one that
+// carries the recipe's version), or made by `make` now and cached, whole or not at all. `what`
+// names it in the description. The case volume above is one such entry; an exam's case is another.
+VolumePair cached_volume(const std::string& name, const std::string& what, const std::function<echo::CaseVolume()>& make,
+                         const std::function<void(const std::string& stage, double done)>& progress);
+// `stem` with the version of the recipe that makes volumes (bumped when what they hold changes).
+std::string cache_entry_name(const std::string& stem);
 
 // What the commands that make the default volume on first use put before its progress's stage,
 // after their own name (TerminalProgress's lead: "echosim run: " + kCaseVolumeProgress).

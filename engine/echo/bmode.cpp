@@ -42,6 +42,8 @@ constexpr std::array<Acoustics, kTissueCount> kAcoustics = {{
     {2.0f, 7.80f, 20.0f},    // bone cortex
     {0.3f, 1.50f, 10.0f},    // marrow
     {0.9f, 1.68f, 0.6f},     // organised (chronic) thrombus: echogenic
+    {1.8f, 1.74f, 1.2f},     // a chronic thrombus' scarred vein wall: thick, bright
+    {0.1f, 1.62f, 0.5f},     // lymph node cortex: hypo-echoic
 }};
 constexpr float kSpecular = 40.0f;  // specular echo relative to a unit scatterer (about 20 dB over speckle)
 constexpr double kLattice = 0.1;    // scatterer lattice [mm]

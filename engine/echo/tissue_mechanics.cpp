@@ -43,7 +43,13 @@ TissueTable tissue_mechanics(const PatientCase& patient)
     t[int(Tissue::thrombus)] = solid(400, 0.2f, Tissue::thrombus);
     // a chronic one: organised, partly compressible, in a thick fibrotic wall
     t[int(Tissue::organised_thrombus)] = solid(60, 0.4f, Tissue::organised_thrombus);
-    t[int(Tissue::vein_wall)] = patient.which == Case::dvt_chronic ? solid(1500, 0.1f, Tissue::vein_wall) : solid(300, 0.3f, Tissue::vein_wall);
+    t[int(Tissue::vein_wall)] = solid(300, 0.3f, Tissue::vein_wall);
+    // a chronic thrombus' vein: its wall thick and fibrotic, rigid (its own code: the phantom puts
+    // it where the anatomy has a chronic thrombus, so the table needs no case)
+    t[int(Tissue::scarred_vein_wall)] = solid(1500, 0.1f, Tissue::scarred_vein_wall);
+    // a lymph node: firm, a little compressible, keeping its shape under the exam's pressure (the
+    // mimic a trainee must not call a clot)
+    t[int(Tissue::lymph_node)] = solid(50, 0.35f, Tissue::lymph_node);
     return t;
 }
 
