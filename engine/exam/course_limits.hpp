@@ -3,27 +3,27 @@
 // s from the inguinal ligament for the CFV, the FV and the popliteal vein; the branch's own s from
 // its junction for the GSV and the DFV).
 //
-// These numbers must match the landmarks of the course the phantom builds (echo/phantom.hpp): the
-// reader lets a thrombus or a station through only where the phantom models a vein, and a landmark
-// must name the place where the phantom puts it. They are kept here, in one table, so that they can
-// be pointed at the phantom's own constants in one edit.
+// The numbers are the course the phantom builds (echo/vein_course.hpp, one source): the reader lets
+// a thrombus or a station through only where the phantom models a vein, and a landmark names the
+// place where the phantom puts it.
 #pragma once
 
 #include <array>
 #include <string_view>
 
 #include "echo/anatomy.hpp"
+#include "echo/vein_course.hpp"
 
 namespace echosim::exam::course {
 
 // Along the deep vein [cm from the inguinal ligament].
-inline constexpr double kSfj_cm = 3.0;           // the saphenofemoral junction, on the CFV
-inline constexpr double kBifurcation_cm = 5.0;   // the CFV divides into the FV and the DFV
-inline constexpr double kHiatus_cm = 35.0;       // the adductor hiatus: the FV becomes the popliteal vein
-inline constexpr double kPoplitealFossa_cm = 42.0;  // the popliteal vein behind the knee
-inline constexpr double kTrifurcation_cm = 50.0; // the popliteal vein ends at the calf veins
-inline constexpr double kGsvModelled_cm = 40.0;  // the great saphenous vein modelled from the SFJ (down to the knee)
-inline constexpr double kDfvModelled_cm = 6.5;   // the deep femoral vein modelled from the bifurcation
+inline constexpr double kSfj_cm = echo::kSfj_cm;           // the saphenofemoral junction, on the CFV
+inline constexpr double kBifurcation_cm = echo::kBifurcation_cm;   // the CFV divides into the FV and the DFV
+inline constexpr double kHiatus_cm = echo::kAdductorHiatus_cm;       // the adductor hiatus: the FV becomes the popliteal vein
+inline constexpr double kPoplitealFossa_cm = echo::kPoplitealFossa_cm;  // the popliteal vein behind the knee
+inline constexpr double kTrifurcation_cm = echo::kTrifurcation_cm; // the popliteal vein ends at the calf veins
+inline constexpr double kGsvModelled_cm = echo::kGsvModelled_cm;  // the great saphenous vein modelled from the SFJ (down to the knee)
+inline constexpr double kDfvModelled_cm = echo::kDfvModelled_cm;   // the deep femoral vein modelled from the bifurcation
 
 // A segment's span in its own s, and what bounds it (for messages).
 struct SegmentSpan {

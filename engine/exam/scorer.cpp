@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "echo/phantom.hpp"
+#include "echo/vein_course.hpp"
 
 namespace echosim::exam {
 namespace {
@@ -164,6 +165,9 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
     r.case_title = scenario_.title;
     r.protocol = protocol_name(scenario_.protocol);
     r.pass_mark = bands.pass_mark;
+    r.adequate_force_N = bands.adequate_force_N;
+    r.excessive_force_N = bands.excessive_force_N;
+    r.course = {echo::kSfj_cm, echo::kBifurcation_cm, echo::kAdductorHiatus_cm, echo::kTrifurcation_cm};
     int points = 0, calls_right = 0, examined = 0;
     bool missed_thrombus = false, called_clot = false, all_collapsed_and_cleared = true;
     std::string clots_called;
