@@ -6,16 +6,16 @@
 // implicit one with the step's sweeps shared by every core (up to 8).
 // The exam window (session/session.hpp): the same 2500-node press on windows moved to the adductor
 // canal and the popliteal fossa (the rate over the whole exam region: a window anywhere steps the
-// same grid), and one real-time row that moves a session's window back and forth between them while
-// the haptic loop ticks (the probe held lifted, as the rule has it): how long a move takes in the
-// driver thread (building the window while the physics steps on; the swap, with the physics thread
-// stopped) and what the haptic loop did meanwhile.
+// same grid), and one real-time row whose window follows a hovering probe back and forth between
+// them while the haptic loop ticks: how long a move takes (building the window, while the physics
+// steps on; the swap, with the physics thread stopped) and what the haptic loop did meanwhile.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
+#include <vector>
 
 #include "bench/suites.hpp"
 #include "core/assets.hpp"
@@ -93,47 +93,63 @@ void window_steps(benchmark::State& state, const PhysicsFixture& f, bool poplite
     state.counters["window_z_mm"] = s.leg().limb_point(s.window().centre).z;
 }
 
-// Real time: a session with the haptic loop running (a scripted hand holding the probe 10 mm over
-// the home patch's centre), its window moved `moves` times between the canal and the popliteal
-// fossa, 0.1 s apart; with `moves` 0, the same spell with nothing moved (the loop's own figures on
-// this machine, under the same load, to read the others against).
-void window_moves(benchmark::State& state, const PhysicsFixture& f, int moves)
+// Real time, the window following the probe: a scripted hand carries the probe 10 mm over the skin
+// down the thigh's front and back between mid-thigh (z = -150 mm) and the adductor canal (z = -300)
+// at 500 mm/s, resting 0.2 s at each end, 10 times each way, while the haptic loop ticks and the
+// driver advances at 60 Hz; each arrival moves the window (built on the session's builder thread,
+// then swapped). With `travel` false the probe hovers over the home patch's centre
+// for as long and nothing moves: the loop's own figures on this machine, under the same load.
+void window_moves(benchmark::State& state, const PhysicsFixture& f, bool travel)
 {
     constexpr int spells = 20;
+    constexpr double rest_s = 0.2, travel_s = 0.3, spell_s = rest_s + travel_s;
     for (auto _ : state) {
-        const Pose held = pressed_along_beam(f.leg.probe_rest_pose(0.5f, 0.5f), -10.0);
-        const device::TrajectoryRow row{0.0, Eigen::Vector3d(held.position.x, held.position.y, held.position.z),
-                                        Eigen::Quaterniond(held.orientation.w, held.orientation.x, held.orientation.y, held.orientation.z).normalized()};
+        auto hover = [&](double t, const Pose& rest) {
+            const Pose p = pressed_along_beam(rest, -10.0);
+            return device::TrajectoryRow{t, Eigen::Vector3d(p.position.x, p.position.y, p.position.z),
+                                         Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z).normalized()};
+        };
+        std::vector<device::TrajectoryRow> rows;
+        const double t0 = 0.3;  // the session settles first
+        rows.push_back(hover(0.0, f.leg.probe_rest_pose(0.5f, 0.5f)));
+        const float theta = f.leg.patch().centre_theta();
+        for (int i = 0; i < spells; ++i) {
+            const float z = i % 2 == 1 ? -150.0f : -300.0f;
+            const Pose at = travel ? f.leg.limb_rest_pose({f.leg.limb_t_at_z(z), theta}) : f.leg.probe_rest_pose(0.5f, 0.5f);
+            rows.push_back(hover(t0 + i * spell_s + travel_s, at));
+            rows.push_back(hover(t0 + (i + 1) * spell_s, at));
+        }
         session::SessionOptions o;
         o.clock = session::Clock::real_time;
-        o.device = std::make_shared<device::ScriptedDevice>(device::Trajectory::parse(device::format_trajectory({row}), "held"), "held");
+        o.window_follows_probe = true;
+        o.device = std::make_shared<device::ScriptedDevice>(device::Trajectory::parse(device::format_trajectory(rows), "hover"), "hover");
         session::Session s(o);
         haptics::HapticLoop& loop = *s.haptic_loop();
-        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        std::this_thread::sleep_for(std::chrono::duration<double>(t0));
         loop.restart_window();
         const std::int64_t ticks0 = loop.ticks();
         const physics::RunnerStats physics0 = s.physics_stats();
         const auto start = std::chrono::steady_clock::now();
-        double build_sum = 0, swap_sum = 0, felt_max = 0;
-        for (int i = 0; i < spells; ++i) {
-            if (i < moves) {
-                s.move_window(window_site(f.leg, i % 2 == 1));
+        double build_sum = 0, swap_sum = 0, felt_max = 0, elapsed = 0;
+        int moves = 0;
+        while (elapsed < spells * spell_s) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(16));
+            s.advance(0.016);
+            felt_max = std::max(felt_max, s.view().haptic_force_N);
+            if (s.window_moves().moves > moves) {
+                moves = s.window_moves().moves;
                 build_sum += s.window_moves().last_build_ms;
                 swap_sum += s.window_moves().last_swap_ms;
             }
-            for (int k = 0; k < 6; ++k) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(16));
-                s.advance(0.016);
-                felt_max = std::max(felt_max, s.view().haptic_force_N);
-            }
+            elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const std::int64_t ticks = loop.ticks() - ticks0;
         const physics::RunnerStats physics1 = s.physics_stats();
         s.stop();
         const haptics::PeriodStats p = loop.stats();
         const session::Session::WindowMoves& m = s.window_moves();
         state.counters["moves"] = m.moves;
+        state.counters["abandoned"] = m.abandoned;
         state.counters["build_ms_mean"] = moves > 0 ? build_sum / moves : 0.0;
         state.counters["build_ms_max"] = m.max_build_ms;
         state.counters["swap_ms_mean"] = moves > 0 ? swap_sum / moves : 0.0;
@@ -234,9 +250,9 @@ std::shared_ptr<void> register_physics(const SuiteOptions& options)
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime()
             ->MinTime(options.min_time_s);
-    for (const int moves : {20, 0})
-        benchmark::RegisterBenchmark(moves ? "physics/window-move/realtime" : "physics/window-move/realtime/held",
-                                     [f = fixture.get(), moves](benchmark::State& s) { window_moves(s, *f, moves); })
+    for (const bool travel : {true, false})
+        benchmark::RegisterBenchmark(travel ? "physics/window-move/realtime" : "physics/window-move/realtime/held",
+                                     [f = fixture.get(), travel](benchmark::State& s) { window_moves(s, *f, travel); })
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime()
             ->Iterations(1);

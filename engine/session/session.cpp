@@ -9,6 +9,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 namespace echosim::session {
 
 namespace {
@@ -166,13 +170,19 @@ bool Session::over_model(const Pose& face) const
     return true;
 }
 
+bool Session::lifted(WindowOffset& o)
+{
+    if (!(physics_.latest().probe_force_N < kLiftedForceN)) return false;  // pressing: the window stays
+    o = window_offset(commanded_face());
+    return o.height_mm >= -kMaxInsideMm;
+}
+
 void Session::follow_probe()
 {
     if (!options_.window_follows_probe || stopped_) return;
-    if (!(physics_.latest().probe_force_N < kLiftedForceN)) return;  // pressing: the window stays
+    WindowOffset o;
+    if (!lifted(o) || o.height_mm > kHoverMm) return;
     const Pose face = commanded_face();
-    const WindowOffset o = window_offset(face);
-    if (std::abs(o.height_mm) > kHoverMm) return;
     if (std::abs(o.along_mm) <= kZoneAlongMm && std::abs(o.around_mm) <= kZoneAroundMm) return;
     move_to(leg_->limb_coordinates(face.position), true);
 }
@@ -182,18 +192,43 @@ bool Session::move_window(scene::LimbCoordinates centre) { return move_to(centre
 bool Session::move_to(scene::LimbCoordinates centre, bool if_lifted)
 {
     // cheap first: a window that cannot come nearer (the limb's end) is not built again
-    if (leg_->window_cells(centre) == leg_->patch().cells) return false;
-    const auto start = Clock_::now();
+    const scene::PatchCells cells = leg_->window_cells(centre);
+    if (cells == leg_->patch().cells) return false;
     scene::LegOptions options = leg_->options();
     options.patch_centre = centre;
+    if (if_lifted && options_.clock == Clock::real_time) {
+        if (pending_.valid()) {
+            if (pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;  // still building
+            Window built = pending_.get();
+            if (pending_cells_ == cells) return swap_in(std::move(built), true);
+            // built for where the probe was: dropped, and built again for where it is
+        }
+        pending_cells_ = cells;
+        pending_ = std::async(std::launch::async, [this, options] {
+            // below the driver, the physics and the haptic loop on a machine short of cores
+            setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 10);
+            const auto start = Clock_::now();
+            Window w = build_window(std::make_unique<const scene::LegModel>(options));
+            w.build_ms = ms_since(start);
+            return w;
+        });
+        return false;
+    }
+    const auto start = Clock_::now();
     Window next = build_window(std::make_unique<const scene::LegModel>(options));
-    const double build_ms = ms_since(start);
+    next.build_ms = ms_since(start);
+    return swap_in(std::move(next), if_lifted);
+}
 
+bool Session::swap_in(Window next, bool if_lifted)
+{
+    const double build_ms = next.build_ms;
     const auto swap_start = Clock_::now();
-    const bool real_time = options_.clock == Clock::real_time;
+    const bool real_time = options_.clock == Clock::real_time && !stopped_;  // a stopped session's physics stays stopped
     if (real_time) physics_.stop();
     // real time: the probe may have been pressed while the window was built; it keeps the old one
-    if (if_lifted && !(physics_.latest().probe_force_N < kLiftedForceN)) {
+    WindowOffset o;
+    if (if_lifted && !lifted(o)) {
         if (real_time) physics_.start();
         ++window_moves_.abandoned;
         return false;

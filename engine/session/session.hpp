@@ -33,8 +33,10 @@
 // 1 kHz on one core), and the patch is a window that follows the probe over the whole right leg,
 // from the inguinal ligament to the popliteal fossa. The rule (follow_probe(), at every advance):
 //   - the window moves only while the probe is lifted: the tissue pushes on it less than
-//     kLiftedForceN (off the skin, or resting on it in the gel without pressing), and its face is
-//     within kHoverMm of the skin (a probe waved about the room moves nothing);
+//     kLiftedForceN (off the skin, or resting on it in the gel without pressing) and its face is
+//     not more than kMaxInsideMm inside the skin (a probe pushed into the leg off the simulated
+//     tissue feels nothing there, but is not lifted: the window does not appear around it), and
+//     its face is within kHoverMm of the skin (a probe waved about the room moves nothing);
 //   - it moves when the face centre has left the window's central zone: more than kZoneAlongMm
 //     along the limb or kZoneAroundMm around it from the window's centre (measured on the skin);
 //   - it then re-centres on the face: a new leg (its static mesh's hole where the window is now),
@@ -48,10 +50,13 @@
 // and put down again. The window's placement is in window(), its moves counted by window_serial():
 // whoever draws the leg uploads the static mesh and the patch again when that changes
 // (render::ScenePass::replace_leg), and leg() then is the new one.
-// Real time: the new window is built in the driver thread while the physics steps on; then the
-// physics thread is stopped, the model swapped and the thread started again (a fraction of a
-// millisecond; the lift is checked again once it is stopped, and a probe pressed meanwhile keeps
-// the old window). The haptic loop keeps ticking throughout: it renders the contact model the
+// Real time: the new window is built on a thread of its own, at a lower priority (nice 10), while
+// the physics steps on and the driver draws frames; a later advance() that finds it built, the
+// probe still lifted and still wanting that window, swaps it in: the physics thread is stopped,
+// the model swapped and the thread started again (a millisecond or two; the lift is checked again
+// once it is stopped, and a probe pressed meanwhile keeps the old window). The builder reads only
+// what the session never changes after it is made (the parameters, the options); the window comes
+// back through its std::future. The haptic loop keeps ticking throughout: it renders the contact model the
 // swap publishes ("no contact": the probe was lifted) until the new model's first step. Lock-step:
 // all of it in advance(), on simulated time: runs with moves are repeatable bit for bit.
 //
@@ -66,6 +71,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -196,7 +202,8 @@ public:
     const scene::ExamPatch& window() const { return leg_->patch(); }
     int window_serial() const { return window_serial_; }
     static constexpr double kLiftedForceN = 0.5;  // [N] the probe counts as lifted below this push
-    static constexpr double kHoverMm = 40.0;      // [mm] the face within this of the skin, outside or in
+    static constexpr double kHoverMm = 40.0;      // [mm] the face within this of the skin, outside
+    static constexpr double kMaxInsideMm = 1.0;   // [mm] and no deeper than this inside it
     static constexpr double kZoneAlongMm = 20.0;  // [mm] the central zone's half-length along the limb
     static constexpr double kZoneAroundMm = 8.0;  // [mm] and its half-width around it
     // Where a face centre lies from the window's centre, along the limb (towards the foot) and
@@ -209,7 +216,7 @@ public:
     bool over_model(const Pose& face) const;
     // Moves the window now to be centred as near `centre` as whole leg cells allow, pressing or not
     // (a scripted exam's start, tests, a driver that knows better); false when it is there already.
-    // The same swap as a move that follows the probe, without the lift check.
+    // The same swap as a move that follows the probe, without the lift check, built in this thread.
     bool move_window(scene::LimbCoordinates centre);
     // How the moves went: how many, and how long the last and the longest took in the driver
     // thread: building the new window (the physics steps on meanwhile in real time), and the swap
@@ -270,6 +277,7 @@ public:
 
 private:
     struct Window {
+        double build_ms = 0;
         std::unique_ptr<const scene::LegModel> leg;
         std::shared_ptr<const physics::CompiledModel> compiled;
         physics::TissueState rest;  // the tissue at rest on it, made before the swap
@@ -283,9 +291,13 @@ private:
     Pose commanded_face();
     // the rule above; at the start of every advance()
     void follow_probe();
+    // the probe lifted as the rule has it (the push, the face's height), its face's offset in `offset`
+    bool lifted(WindowOffset& offset);
     // builds the window at `centre` and swaps it in; `if_lifted`: only if the probe is still
-    // lifted once the physics is stopped. False when it did not move.
+    // lifted once the physics is stopped, and in real time built on the builder thread (the swap
+    // then comes at a later call that finds it built). False when it did not move.
     bool move_to(scene::LimbCoordinates centre, bool if_lifted);
+    bool swap_in(Window next, bool if_lifted);
 
     SessionOptions options_;
     tissue::TissueModel fitted_;  // the tissue's parameters (scaled by tissue_depth_scale), fit and provenance
@@ -304,6 +316,9 @@ private:
     int window_serial_ = 0;
     WindowMoves window_moves_;
     bool stopped_ = false;  // stop() was called: nothing starts the physics thread again
+    // real time: the window being built on the builder thread, and its cells
+    std::future<Window> pending_;
+    scene::PatchCells pending_cells_;
     ProbePlacement probe_;
     double sent_press_mm_ = 0;  // the press of the last command sent [mm]
     double time_ = 0;

@@ -210,6 +210,16 @@ TEST(ExamWindow, AProbeAwayFromTheLegOrAFixedWindowMovesNothing)
         for (int i = 0; i < 20; ++i) s.advance(kStep);
         EXPECT_EQ(s.window_serial(), 0);
         EXPECT_FALSE(s.view().over_model);
+        // pushed 6 mm into the leg there, where no tissue is simulated: it feels nothing, but it is
+        // not lifted, so the window does not appear around it; lifted, it does
+        const Pose canal = rest_at(s, -300.0f, home_theta());
+        s.place_probe({canal, 6.0});
+        for (int i = 0; i < 20; ++i) s.advance(kStep);
+        EXPECT_EQ(s.view().probe_force_N, 0.0);
+        EXPECT_EQ(s.window_serial(), 0);
+        s.place_probe({canal, 0.0});
+        s.advance(kStep);
+        EXPECT_EQ(s.window_serial(), 1);
     }
     {
         Session s;  // the window stays where it starts unless asked to follow
