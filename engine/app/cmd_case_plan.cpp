@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <optional>
 
+#include <glm/geometric.hpp>
+
 #include "app/commands.hpp"
 #include "app/exam_run.hpp"
 #include "exam/course_truth.hpp"
@@ -23,20 +25,23 @@ constexpr double kBandFraction = 0.35;
 // Each station's press depth [mm] for `target_N` there.
 std::vector<double> press_depths(const PreparedExam& exam, double target_N)
 {
-    session::Session session(session::SessionOptions{.clock = session::Clock::lock_step});
+    session::Session session(session::SessionOptions{.clock = session::Clock::lock_step, .window_follows_probe = true});
     std::vector<double> depths;
     const exam::PlanOptions plan;
     std::optional<Pose> previous;
     for (const exam::StationTruth& t : exam.truth) {
         // to the station as the planned exam goes there: lifted, and round the limb when it turns far
+        // (each leg of the way given the time the physics' probe sweep needs to cover it, and more)
+        const auto go = [&](const Pose& to) {
+            const double mm = glm::length(session.probe().face().position - to.position);
+            session.place_probe({to, 0.0});
+            session.advance(0.2 + mm / plan.far_speed_mm_s);
+        };
         if (previous && exam::turns_far(*previous, t.ideal_probe, plan)) {
-            session.place_probe({pressed_along_beam(*previous, -plan.far_lift_mm), 0.0});
-            session.advance(0.3);
-            session.place_probe({pressed_along_beam(t.ideal_probe, -plan.far_lift_mm), 0.0});
-            session.advance(0.3);
+            go(pressed_along_beam(*previous, -plan.far_lift_mm));
+            go(pressed_along_beam(t.ideal_probe, -plan.far_lift_mm));
         }
-        session.place_probe({pressed_along_beam(t.ideal_probe, -plan.lift_mm), 0.0});
-        session.advance(0.3);
+        go(pressed_along_beam(t.ideal_probe, -plan.lift_mm));
         previous = t.ideal_probe;
         double depth = session::Session::kMaxPressMm;
         try {
@@ -59,12 +64,33 @@ exam::PlanError parse_style(const std::string& style)
     throw std::invalid_argument("--style " + style + ": correct, skip, light-press, oblique, artery, excessive or mimic-called");
 }
 
+// The depth a probe resting at `rest` needs for `target_N` (the oblique error's tilted press, the
+// excessive one's), the deepest press when it is out of reach.
+double depth_for(const Pose& rest, double target_N)
+{
+    session::Session session(session::SessionOptions{.clock = session::Clock::lock_step, .window_follows_probe = true});
+    const exam::PlanOptions plan;
+    const double mm = glm::length(session.probe().face().position - rest.position);
+    session.place_probe({pressed_along_beam(rest, -plan.lift_mm), 0.0});
+    session.advance(0.2 + mm / plan.far_speed_mm_s);
+    try {
+        return session.press_to_force(rest, target_N).press_mm;
+    } catch (const std::invalid_argument&) {
+        return session::Session::kMaxPressMm;
+    }
+}
+
 void write_plan(const PreparedExam& exam, const std::vector<double>& depths, exam::PlanError error, std::size_t at,
-                const std::filesystem::path& out)
+                const std::filesystem::path& out, double target_N)
 {
     exam::PlanOptions o;
     o.error = error;
     o.at = at;
+    if (error == exam::PlanError::oblique)
+        o.oblique_press_mm = depth_for(exam::tilted_about_array(exam.truth[at].ideal_probe, o.oblique_deg), target_N);
+    // past the excessive limit by a margin no settling ripple hides
+    if (error == exam::PlanError::excessive)
+        o.excessive_press_mm = depth_for(exam.truth[at].ideal_probe, 1.15 * exam.scenario.bands.excessive_force_N);
     io::write_file<std::runtime_error>(out, exam::format_exam_script(exam::plan_exam(exam.truth, depths, o)));
     std::printf("echosim case plan: %s: %s%s\n", out.c_str(), exam::plan_error_name(error),
                 error == exam::PlanError::none ? "" : (" at " + exam.truth[at].name).c_str());
@@ -104,22 +130,23 @@ int run_case_plan(const CasePlanArgs& args)
             const echo::Phantom phantom(leg, exam.scenario.anatomy);
             exam.truth = exam::station_truth(phantom, exam.scenario);
             const exam::ScoringBands& b = exam.scenario.bands;
-            const std::vector<double> depths = press_depths(exam, b.adequate_force_N + kBandFraction * (b.excessive_force_N - b.adequate_force_N));
+            const double target_N = b.adequate_force_N + kBandFraction * (b.excessive_force_N - b.adequate_force_N);
+            const std::vector<double> depths = press_depths(exam, target_N);
             if (args.all.empty()) {
                 const exam::PlanError error = parse_style(args.style);
                 const std::size_t at = args.at >= 0 ? std::size_t(args.at) : error_station(exam, error);
                 if (error != exam::PlanError::none && at >= exam.truth.size())
                     throw std::invalid_argument("--at: no station of case " + exam.scenario.id + " fits the error " + args.style);
-                write_plan(exam, depths, error, at, args.out);
+                write_plan(exam, depths, error, at, args.out, target_N);
                 continue;
             }
             std::filesystem::create_directories(args.all);
-            write_plan(exam, depths, exam::PlanError::none, 0, args.all / (exam.scenario.id + ".correct.csv"));
+            write_plan(exam, depths, exam::PlanError::none, 0, args.all / (exam.scenario.id + ".correct.csv"), target_N);
             for (exam::PlanError e : {exam::PlanError::skip, exam::PlanError::light_press, exam::PlanError::oblique, exam::PlanError::artery,
                                       exam::PlanError::excessive, exam::PlanError::mimic_called}) {
                 const std::size_t at = error_station(exam, e);
                 if (at >= exam.truth.size()) continue;  // e.g. no lymph node in this case
-                write_plan(exam, depths, e, at, args.all / (exam.scenario.id + "." + exam::plan_error_name(e) + ".csv"));
+                write_plan(exam, depths, e, at, args.all / (exam.scenario.id + "." + exam::plan_error_name(e) + ".csv"), target_N);
             }
         }
     } catch (const std::exception& e) {

@@ -179,7 +179,8 @@ int run_window(const RunArgs& args)
                     args.igtl_bind.empty() ? "localhost" : "this machine", link->port());
     }
 
-    session::SessionOptions session_options{.clock = session::Clock::real_time};
+    // the exam window follows a lifted probe over the whole leg (session/session.hpp)
+    session::SessionOptions session_options{.clock = session::Clock::real_time, .window_follows_probe = true};
     if (!read_model_option("run", args.model, session_options.tissue)) return kExitBadInput;
     // the probe moves through the haptic loop: from the window's mouse and keyboard, a SpaceMouse,
     // a force-feedback arm (a Touch through OpenHaptics, or the simulated one), a scripted

@@ -80,6 +80,8 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
     {
         runner::ExamOptions o;
         o.session.patient = patient;
+        // the exam window follows the lifted probe from the groin to the popliteal fossa
+        o.session.window_follows_probe = true;
         o.volume = volumes.volume;
         o.labels = volumes.labels;
         o.trajectory = exam.trajectory;

@@ -34,12 +34,7 @@ std::string anatomy_digest(const echo::Anatomy& a)
 VolumePair exam_volume(const exam::Scenario& scenario, bool coarse, const gpu::ContextOptions& gpu,
                        const std::function<void(const std::string&, double)>& progress)
 {
-    echo::CaseVolumeOptions options;
-    if (coarse) {
-        options.voxel_mm = 0.6;
-        options.pixel_mm = 0.3;
-        options.frames /= 4;
-    }
+    echo::CaseVolumeOptions options = coarse ? echo::coarse_case_volume_options() : echo::CaseVolumeOptions{};
     options.imager = bmode_imager_factory(gpu, "echosim exam");
     // by the anatomy alone: cases that differ only in their stations or bands share one volume
     const std::string stem = "exam-" + anatomy_digest(scenario.anatomy).substr(0, 12) + (coarse ? "-coarse" : "");

@@ -118,6 +118,13 @@ const char* plan_error_name(PlanError e)
     return "?";
 }
 
+Pose tilted_about_array(const Pose& rest, double deg)
+{
+    Pose p = rest;
+    p.orientation = rest.orientation * glm::angleAxis(float(deg * std::numbers::pi / 180.0), glm::vec3(1, 0, 0));
+    return p;
+}
+
 bool turns_far(const Pose& from, const Pose& to, const PlanOptions& o)
 {
     const double cosine = glm::dot(from.axis_y(), to.axis_y());
@@ -148,19 +155,20 @@ ExamScript plan_exam(const std::vector<StationTruth>& stations, const std::vecto
             rest.position += shift * x;
         }
         if (here && o.error == PlanError::oblique) {
-            // tilted about the array's axis, the face still centred on the same skin point
-            rest.orientation = rest.orientation * glm::angleAxis(float(o.oblique_deg * std::numbers::pi / 180.0), glm::vec3(1, 0, 0));
+            rest = tilted_about_array(rest, o.oblique_deg);
+            if (o.oblique_press_mm >= 0) depth = o.oblique_press_mm;
         }
         if (here && o.error == PlanError::light_press) depth *= o.light_fraction;
-        if (here && o.error == PlanError::excessive) depth *= o.excessive_factor;
+        if (here && o.error == PlanError::excessive) depth = o.excessive_press_mm >= 0 ? o.excessive_press_mm : depth * o.excessive_factor;
         const Pose lifted = pressed_along_beam(rest, -o.lift_mm);
         if (first) {
             script.poses.push_back({0.0, lifted});
             first = false;
         } else if (turns_far(previous, rest, o)) {
             // round the limb, not through it: out along the last station's beam, across, and in
-            at(o.travel_s, pressed_along_beam(previous, -o.far_lift_mm));
-            at(o.travel_s, pressed_along_beam(rest, -o.far_lift_mm));
+            const Pose out = pressed_along_beam(previous, -o.far_lift_mm), over = pressed_along_beam(rest, -o.far_lift_mm);
+            at(o.travel_s, out);
+            at(std::max(o.travel_s, double(glm::length(over.position - out.position)) / o.far_speed_mm_s), over);
             at(o.lower_s, lifted);
         } else {
             at(o.travel_s, lifted);

@@ -60,9 +60,16 @@ struct PlanOptions {
     // of the knee) the probe goes round the limb, far_lift_mm out, not through it
     double far_turn_deg = 20.0;
     double far_lift_mm = 80.0;
+    // and crosses at this speed at most [mm/s]: half what the physics lets a probe command sweep
+    // (physics/probe_sweep.hpp), so the probe is where the script says when it comes down
+    double far_speed_mm_s = 250.0;
     double light_fraction = 0.25;  // light_press: this fraction of the station's depth
-    double excessive_factor = 1.8; // excessive: this times the station's depth
+    double excessive_factor = 1.8; // excessive: this times the station's depth, unless
+    double excessive_press_mm = -1.0;  // excessive: this depth (< 0: the factor's; `case plan` finds one past the limit)
     double oblique_deg = 30.0;     // oblique: the plane tilted about the array this far
+    // oblique: the depth pressed at the tilted pose (< 0: the station's own); a tilted face digs its
+    // edge in, so the same force wants a shallower press (`echosim case plan` finds it on the tissue)
+    double oblique_press_mm = -1.0;
 };
 
 // The exam over the stations in order: lifted travel to above each, down onto the skin, pressed
@@ -71,6 +78,8 @@ struct PlanOptions {
 // what its error does (a skipped station is neither visited nor called; mimic_called calls the
 // healthy station not compressible).
 ExamScript plan_exam(const std::vector<StationTruth>& stations, const std::vector<double>& press_mm, const PlanOptions& options = {});
+// The rest pose tilted `deg` about its array's axis, the face still centred on the same skin point.
+Pose tilted_about_array(const Pose& rest, double deg);
 // Whether the probe must go round the limb from the rest pose `from` to `to` (their beams more than
 // options.far_turn_deg apart).
 bool turns_far(const Pose& from, const Pose& to, const PlanOptions& options);

@@ -18,7 +18,8 @@ SimulatorFrame::SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& comman
     : scene_pass_(ctx, commands, format, scene.meshes()),
       echo_image_(ctx, std::make_shared<const image::EchoVolumeGpu>(commands, volume, labels), scene.session.image_plane(),
                   scene.session.patient()),
-      smooth_(ctx, gpu::Filter::linear), panel_(ctx, format, {}), echo_pass_(echo_image_, panel_, smooth_), cue_pass_(commands, format)
+      smooth_(ctx, gpu::Filter::linear), panel_(ctx, format, {}), echo_pass_(echo_image_, panel_, smooth_), cue_pass_(commands, format),
+      commands_(commands), drawn_window_(scene.session.window_serial())
 {
     const PassSetup setup{ctx, commands, format, scene, panel_};
     std::vector<std::pair<PassPlace, gpu::FramePass*>> made;
@@ -52,6 +53,12 @@ std::vector<std::string> SimulatorFrame::pass_names() const
 
 void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& state, VkExtent2D extent)
 {
+    // the exam window moved (a lifted probe's move: rare): the leg with its hole where the window
+    // is now, and the window's patch, uploaded again before the view that draws them
+    if (state.window_serial != drawn_window_) {
+        scene_pass_.replace_leg(commands_, scene.session.leg().static_mesh(), scene.session.leg().patch().rest);
+        drawn_window_ = state.window_serial;
+    }
     scene_pass_.set_view(scene.frame_view(state));
     echo_pass_.set_frame(*state.echo);
     const render::TargetRect panel = echo_panel_rect(extent, scene.session.image_plane());

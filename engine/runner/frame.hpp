@@ -97,6 +97,8 @@ private:
     std::vector<SessionPass*> following_;                 // those of them that follow the session
     std::vector<gpu::FramePass*> order_;
     std::optional<gpu::FramePasses> passes_;
+    gpu::CommandPool& commands_;     // the drawing thread's, for the leg's uploads when the window moves
+    int drawn_window_ = 0;            // the exam window the scene pass holds (Session::window_serial)
 };
 
 }  // namespace echosim::runner
