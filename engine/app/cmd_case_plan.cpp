@@ -20,7 +20,7 @@ namespace {
 
 // Where in the adequate band a correct exam presses: above its floor by a margin a trainee's
 // steady hand keeps, well below the excessive limit.
-constexpr double kBandFraction = 0.35;
+constexpr double kBandFraction = 0.55;
 
 // Each station's press depth [mm] for `target_N` there.
 std::vector<double> press_depths(const PreparedExam& exam, double target_N)
@@ -81,13 +81,17 @@ double depth_for(const Pose& rest, double target_N)
 }
 
 void write_plan(const PreparedExam& exam, const std::vector<double>& depths, exam::PlanError error, std::size_t at,
-                const std::filesystem::path& out, double target_N)
+                const std::filesystem::path& out)
 {
     exam::PlanOptions o;
     o.error = error;
     o.at = at;
+    // a tilted face's edge overshoots on the way in (half again the settled force, measured): aimed
+    // at the band's bottom tenth, its peak stays inside the band
+    const exam::ScoringBands& b = exam.scenario.bands;
     if (error == exam::PlanError::oblique)
-        o.oblique_press_mm = depth_for(exam::tilted_about_array(exam.truth[at].ideal_probe, o.oblique_deg), target_N);
+        o.oblique_press_mm = depth_for(exam::tilted_about_array(exam.truth[at].ideal_probe, o.oblique_deg),
+                                       b.adequate_force_N + 0.1 * (b.excessive_force_N - b.adequate_force_N));
     // past the excessive limit by a margin no settling ripple hides
     if (error == exam::PlanError::excessive)
         o.excessive_press_mm = depth_for(exam.truth[at].ideal_probe, 1.15 * exam.scenario.bands.excessive_force_N);
@@ -137,16 +141,16 @@ int run_case_plan(const CasePlanArgs& args)
                 const std::size_t at = args.at >= 0 ? std::size_t(args.at) : error_station(exam, error);
                 if (error != exam::PlanError::none && at >= exam.truth.size())
                     throw std::invalid_argument("--at: no station of case " + exam.scenario.id + " fits the error " + args.style);
-                write_plan(exam, depths, error, at, args.out, target_N);
+                write_plan(exam, depths, error, at, args.out);
                 continue;
             }
             std::filesystem::create_directories(args.all);
-            write_plan(exam, depths, exam::PlanError::none, 0, args.all / (exam.scenario.id + ".correct.csv"), target_N);
+            write_plan(exam, depths, exam::PlanError::none, 0, args.all / (exam.scenario.id + ".correct.csv"));
             for (exam::PlanError e : {exam::PlanError::skip, exam::PlanError::light_press, exam::PlanError::oblique, exam::PlanError::artery,
                                       exam::PlanError::excessive, exam::PlanError::mimic_called}) {
                 const std::size_t at = error_station(exam, e);
                 if (at >= exam.truth.size()) continue;  // e.g. no lymph node in this case
-                write_plan(exam, depths, e, at, args.all / (exam.scenario.id + "." + exam::plan_error_name(e) + ".csv"), target_N);
+                write_plan(exam, depths, e, at, args.all / (exam.scenario.id + "." + exam::plan_error_name(e) + ".csv"));
             }
         }
     } catch (const std::exception& e) {
