@@ -22,34 +22,45 @@ namespace {
 // steady hand keeps, well below the excessive limit.
 constexpr double kBandFraction = 0.55;
 
+session::Session planning_session()
+{
+    return session::Session(session::SessionOptions{.clock = session::Clock::lock_step, .window_follows_probe = true});
+}
+
+// The probe sent to `to` and given the time the physics' probe sweep needs to get there, and more.
+void go(session::Session& session, const Pose& to, const exam::PlanOptions& plan)
+{
+    const double mm = glm::length(session.probe().face().position - to.position);
+    session.place_probe({to, 0.0});
+    session.advance(0.2 + mm / plan.far_speed_mm_s);
+}
+
+// The depth a probe resting at `rest` needs for `target_N`, the deepest press when it is out of reach.
+double press_depth(session::Session& session, const Pose& rest, double target_N)
+{
+    try {
+        return session.press_to_force(rest, target_N).press_mm;
+    } catch (const std::invalid_argument&) {
+        return session::Session::kMaxPressMm;  // what a trainee can give there
+    }
+}
+
 // Each station's press depth [mm] for `target_N` there.
 std::vector<double> press_depths(const PreparedExam& exam, double target_N)
 {
-    session::Session session(session::SessionOptions{.clock = session::Clock::lock_step, .window_follows_probe = true});
+    session::Session session = planning_session();
     std::vector<double> depths;
     const exam::PlanOptions plan;
     std::optional<Pose> previous;
     for (const exam::StationTruth& t : exam.truth) {
         // to the station as the planned exam goes there: lifted, and round the limb when it turns far
-        // (each leg of the way given the time the physics' probe sweep needs to cover it, and more)
-        const auto go = [&](const Pose& to) {
-            const double mm = glm::length(session.probe().face().position - to.position);
-            session.place_probe({to, 0.0});
-            session.advance(0.2 + mm / plan.far_speed_mm_s);
-        };
         if (previous && exam::turns_far(*previous, t.ideal_probe, plan)) {
-            go(pressed_along_beam(*previous, -plan.far_lift_mm));
-            go(pressed_along_beam(t.ideal_probe, -plan.far_lift_mm));
+            go(session, pressed_along_beam(*previous, -plan.far_lift_mm), plan);
+            go(session, pressed_along_beam(t.ideal_probe, -plan.far_lift_mm), plan);
         }
-        go(pressed_along_beam(t.ideal_probe, -plan.lift_mm));
+        go(session, pressed_along_beam(t.ideal_probe, -plan.lift_mm), plan);
         previous = t.ideal_probe;
-        double depth = session::Session::kMaxPressMm;
-        try {
-            depth = session.press_to_force(t.ideal_probe, target_N).press_mm;
-        } catch (const std::invalid_argument&) {
-            // out of reach: the deepest press is what a trainee can give there
-        }
-        depths.push_back(depth);
+        depths.push_back(press_depth(session, t.ideal_probe, target_N));
         session.place_probe({pressed_along_beam(t.ideal_probe, -plan.lift_mm), 0.0});
         session.advance(0.2);
     }
@@ -64,20 +75,17 @@ exam::PlanError parse_style(const std::string& style)
     throw std::invalid_argument("--style " + style + ": correct, skip, light-press, oblique, artery, excessive or mimic-called");
 }
 
-// The depth a probe resting at `rest` needs for `target_N` (the oblique error's tilted press, the
-// excessive one's), the deepest press when it is out of reach.
+// The depth a probe resting at `rest` needs for `target_N`, on its own session (the oblique error's
+// tilted press, the excessive one's).
 double depth_for(const Pose& rest, double target_N)
 {
-    session::Session session(session::SessionOptions{.clock = session::Clock::lock_step, .window_follows_probe = true});
+    session::Session session = planning_session();
     const exam::PlanOptions plan;
+    // the lifted approach timed by the way to the rest pose itself (as the shipped scripts were made)
     const double mm = glm::length(session.probe().face().position - rest.position);
     session.place_probe({pressed_along_beam(rest, -plan.lift_mm), 0.0});
     session.advance(0.2 + mm / plan.far_speed_mm_s);
-    try {
-        return session.press_to_force(rest, target_N).press_mm;
-    } catch (const std::invalid_argument&) {
-        return session::Session::kMaxPressMm;
-    }
+    return press_depth(session, rest, target_N);
 }
 
 void write_plan(const PreparedExam& exam, const std::vector<double>& depths, exam::PlanError error, std::size_t at,

@@ -33,7 +33,7 @@ std::string read_text(const std::filesystem::path& file)
 // the station's image: its number and its name, kept to characters every file system takes
 std::string image_name(std::size_t i, const std::string& station)
 {
-    char head[16];
+    char head[32];
     std::snprintf(head, sizeof head, "%02zu-", i + 1);
     std::string name = head;
     for (char c : station) name += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '-';
@@ -110,18 +110,20 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
     const auto report_start = std::chrono::steady_clock::now();
     const echo::ImagePlane plane;
     const echo::ScannerSettings scanner;
-    const exam::LabelImager imager = [&](const echo::EchoFrame& frame) {
-        return echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), plane, frame, scanner, patient, true).labels;
-    };
     std::vector<std::optional<exam::Compression>> compression(exam.truth.size());
     std::vector<std::string> images(exam.truth.size());
     for (std::size_t i = 0; i < exam.truth.size(); ++i) {
         const std::optional<echo::EchoFrame>& deepest = scorer.deepest_frame(i);
         if (!deepest) continue;
-        if (volumes.labels) compression[i] = exam::measure_compression(exam.truth[i], *deepest, plane, imager);
-        const echo::EchoImage image = echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), plane, *deepest, scanner, patient);
+        // one image at the deepest press serves the report's picture and its deformed labels
+        const echo::EchoImage pressed = echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), plane, *deepest, scanner, patient, true);
+        if (volumes.labels) {
+            const echo::EchoImage rest =
+                echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), plane, exam::unpressed(*deepest), scanner, patient, true);
+            compression[i] = exam::measure_compression(exam.truth[i], *deepest, plane, rest.labels, pressed.labels);
+        }
         images[i] = image_name(i, exam.truth[i].name);
-        io::write_png(options.out / images[i], runner::to_rgba(image));
+        io::write_png(options.out / images[i], runner::to_rgba(pressed));
     }
     result.report = scorer.finish(compression, images);
     result.report.trainee = options.trainee;

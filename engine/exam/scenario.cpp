@@ -161,8 +161,8 @@ std::string text(const json& obj, std::string_view key)
 echo::VeinSegment segment(const Reader& r, const json& obj, const std::string& at)
 {
     const std::string name = text(obj, "segment");
-    for (const course::SegmentSpan& s : course::kSegments)
-        if (s.name == name) return s.segment;
+    echo::VeinSegment parsed;
+    if (echo::parse_segment(name, parsed)) return parsed;
     std::string names;
     for (const course::SegmentSpan& s : course::kSegments) names += (names.empty() ? "" : ", ") + std::string(s.name);
     r.fail(at + "/segment", "'" + name + "' is not a vein segment (one of: " + names + ")");
@@ -200,9 +200,7 @@ echo::Anatomy read_anatomy(const Reader& r, const json& j)
             echo::Thrombus t;
             t.segment = segment(r, list[i], at);
             const std::string kind = text(list[i], "kind");
-            if (kind == "acute") t.kind = echo::ThrombusKind::acute;
-            else if (kind == "chronic") t.kind = echo::ThrombusKind::chronic;
-            else r.fail(at + "/kind", "'" + kind + "' is not a kind of thrombus (one of: " + one_of(fields::kThrombusKindNames) + ")");
+            if (!echo::parse_thrombus_kind(kind, t.kind)) r.fail(at + "/kind", "'" + kind + "' is not a kind of thrombus (one of: " + one_of(fields::kThrombusKindNames) + ")");
             t.start_cm = number(list[i], "start_cm");
             t.extent_cm = number(list[i], "extent_cm");
             t.occlusion = number(list[i], "occlusion", 1.0);

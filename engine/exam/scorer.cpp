@@ -54,19 +54,29 @@ double vessel_area_mm2(const std::vector<std::uint8_t>& labels, const echo::Imag
 
 }  // namespace
 
-Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
-                                const LabelImager& labels)
+echo::EchoFrame unpressed(const echo::EchoFrame& pressed)
 {
-    // the same plane unpressed: the probe's face where the skin was before the press, nothing deformed
     echo::EchoFrame rest = pressed;
     rest.columns.clear();
     rest.skin_pressure_kpa = 0;
-    const std::vector<std::uint8_t> at_rest = labels(rest), at_press = labels(pressed);
+    return rest;
+}
+
+Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
+                                const LabelImager& labels)
+{
+    return measure_compression(truth, pressed, plane, labels(unpressed(pressed)), labels(pressed));
+}
+
+Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
+                                const std::vector<std::uint8_t>& at_rest, const std::vector<std::uint8_t>& at_press)
+{
+    // the unpressed plane has the same face (unpressed keeps it)
     auto artery = [](std::uint8_t code) { return code == std::uint8_t(echo::Tissue::artery_lumen); };
     Compression c;
-    c.vein_rest_mm2 = vessel_area_mm2(at_rest, plane, rest.face, truth.vein, vein_interior);
+    c.vein_rest_mm2 = vessel_area_mm2(at_rest, plane, pressed.face, truth.vein, vein_interior);
     c.vein_pressed_mm2 = vessel_area_mm2(at_press, plane, pressed.face, truth.vein, vein_interior);
-    c.artery_rest_mm2 = vessel_area_mm2(at_rest, plane, rest.face, truth.artery, artery);
+    c.artery_rest_mm2 = vessel_area_mm2(at_rest, plane, pressed.face, truth.artery, artery);
     c.artery_pressed_mm2 = vessel_area_mm2(at_press, plane, pressed.face, truth.artery, artery);
     return c;
 }

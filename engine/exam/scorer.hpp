@@ -59,6 +59,11 @@ using LabelImager = std::function<std::vector<std::uint8_t>(const echo::EchoFram
 // +- 1.5 radii across the array), in mm^2 of the image plane.
 Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
                                 const LabelImager& labels);
+// The same, from the labels already imaged at `pressed` and at unpressed(pressed).
+Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
+                                const std::vector<std::uint8_t>& rest_labels, const std::vector<std::uint8_t>& pressed_labels);
+// The plane of `pressed` unpressed: the face where the skin was before the press, nothing deformed.
+echo::EchoFrame unpressed(const echo::EchoFrame& pressed);
 
 class Scorer {
 public:
