@@ -215,6 +215,12 @@ void Context::create_device(bool for_window)
     VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     enable13.dynamicRendering = VK_TRUE;
     enable13.synchronization2 = VK_TRUE;
+    // Vulkan 1.2 core (required there): imageless framebuffers, so a pass that needs a render pass
+    // object (Dear ImGui's Vulkan back-end: ui/ui_pass.hpp) keeps one framebuffer per extent and is
+    // handed each frame's view when it begins, never holding a swapchain view that a resize destroys
+    VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    enable12.imagelessFramebuffer = VK_TRUE;
+    enable13.pNext = &enable12;
 
     // the swapchain only for a window (it needs the instance's surface extensions)
     std::vector<const char*> extensions;
