@@ -1,6 +1,5 @@
 #include "app/exam_run.hpp"
 
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -9,14 +8,11 @@
 
 #include "app/exam_observers.hpp"
 #include "app/stop_signals.hpp"
-#include "echo/echo_image_cpu.hpp"
 #include "exam/course_truth.hpp"
-#include "exam/report_writer.hpp"
 #include "io/partial_file.hpp"
-#include "io/png.hpp"
 #include "runner/exam_config.hpp"
-#include "runner/recorders.hpp"
 #include "scene/leg.hpp"
+#include "trainer/exam_files.hpp"
 
 namespace echosim::app {
 namespace {
@@ -28,16 +24,6 @@ std::string read_text(const std::filesystem::path& file)
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-// the station's image: its number and its name, kept to characters every file system takes
-std::string image_name(std::size_t i, const std::string& station)
-{
-    char head[32];
-    std::snprintf(head, sizeof head, "%02zu-", i + 1);
-    std::string name = head;
-    for (char c : station) name += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '-';
-    return "stations/" + name + ".png";
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0)
@@ -106,29 +92,11 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
         return result;
     }
 
-    // each station's deepest press imaged on the CPU twin: its picture and its deformed labels
+    // each station's deepest press imaged on the CPU twin: its picture and its deformed labels, the
+    // report written (trainer/exam_files.hpp, shared with the trainer)
     const auto report_start = std::chrono::steady_clock::now();
-    const echo::ImagePlane plane;
-    const echo::ScannerSettings scanner;
-    std::vector<std::optional<exam::Compression>> compression(exam.truth.size());
-    std::vector<std::string> images(exam.truth.size());
-    for (std::size_t i = 0; i < exam.truth.size(); ++i) {
-        const std::optional<echo::EchoFrame>& deepest = scorer.deepest_frame(i);
-        if (!deepest) continue;
-        // one image at the deepest press serves the report's picture and its deformed labels
-        const echo::EchoImage pressed = echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), plane, *deepest, scanner, patient, true);
-        if (volumes.labels) {
-            const echo::EchoImage rest =
-                echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), plane, exam::unpressed(*deepest), scanner, patient, true);
-            compression[i] = exam::measure_compression(exam.truth[i], *deepest, plane, rest.labels, pressed.labels);
-        }
-        images[i] = image_name(i, exam.truth[i].name);
-        io::write_png(options.out / images[i], runner::to_rgba(pressed));
-    }
-    result.report = scorer.finish(compression, images);
-    result.report.trainee = options.trainee;
     io::write_file<std::runtime_error>(options.out / "force.csv", scoring->force_csv());
-    exam::write_report(result.report, options.out);
+    result.report = trainer::write_exam_report(scorer, *volumes.volume, volumes.labels.get(), patient, options.out, options.trainee);
     result.report_wall_s = seconds_since(report_start);
     return result;
 }

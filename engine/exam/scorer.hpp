@@ -76,6 +76,21 @@ public:
     // Index of the station the probe is at now (reached), if any.
     std::optional<std::size_t> current_station() const { return current_; }
     const std::vector<StationTruth>& truth() const { return truth_; }
+    // What the scorer knows of a station so far (the trainer's live leg map): reached, its peak
+    // force, the trainee's call, and the errors already seen there.
+    struct StationProgress {
+        bool reached = false;
+        double peak_force_N = 0;
+        Call call = Call::none;
+        bool oblique = false, wrong_vessel = false;
+    };
+    StationProgress progress(std::size_t station) const
+    {
+        const Tracked& st = stations_[station];
+        return {st.reached, st.peak_force_N, st.call, st.oblique, st.wrong_vessel};
+    }
+    // The station a call would answer now (the one examined last), if any.
+    std::optional<std::size_t> last_examined() const { return last_examined_; }
     // The echo frame at each station's deepest press (none: never pressed there).
     const std::optional<echo::EchoFrame>& deepest_frame(std::size_t station) const { return stations_[station].deepest; }
 

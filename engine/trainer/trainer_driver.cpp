@@ -1,0 +1,85 @@
+#include "trainer/trainer_driver.hpp"
+
+#include "trainer/exam_files.hpp"
+#include "trainer/trainer_screens.hpp"
+
+namespace echosim::trainer {
+
+TrainerDriver::TrainerDriver(std::shared_ptr<Trainer> trainer, DriverOptions options)
+    : trainer_(std::move(trainer)), options_(std::move(options))
+{
+    auto volume = options_.volume;
+    auto labels = options_.labels;
+    const echo::PatientCase patient = options_.patient;
+    trainer_->set_report_maker([volume, labels, patient](const exam::Scorer& scorer, const std::filesystem::path& out, const std::string& trainee) {
+        if (!volume) throw std::logic_error("the trainer's runner holds no volume to image the stations from");
+        return write_exam_report(scorer, *volume, labels.get(), patient, out, trainee);
+    });
+}
+
+runner::PassFactory TrainerDriver::pass()
+{
+    return {runner::PassPlace::overlay, [this](const runner::PassSetup& setup) {
+                auto p = std::make_unique<ui::UiPass>(setup, options_.ui);
+                p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
+                    act(draw_trainer(*trainer_, view, extent, ui_->fonts(), ui_->scale()));
+                });
+                ui_ = p.get();
+                return p;
+            }};
+}
+
+void TrainerDriver::feed(const ui::UiInput& input)
+{
+    pending_.push_back(input);
+    if (ui_) ui_->feed(input);
+}
+
+void TrainerDriver::on_attach(runner::Runner& runner)
+{
+    runner_ = &runner;
+}
+
+void TrainerDriver::act(Action a)
+{
+    if (a == Action::quit) quit_ = true;
+    if (a == Action::started && trainer_->lesson().id != options_.loaded_case) case_wanted_ = trainer_->lesson().id;
+}
+
+void TrainerDriver::on_step(runner::StepContext& step)
+{
+    const session::SessionView& v = step.view;
+    Trainer& t = *trainer_;
+    // the scorer first, as `echosim exam` scores: the calls of this step answer what it saw
+    if (t.screen() == Screen::exam) t.observe({v.time_s, v.probe, v.probe_force_N, v.echo});
+    bool active = false;
+    for (const ui::UiInput& in : pending_) {
+        act(t.keys(in, v.time_s, ui_ && ui_->wants_text()));
+        const bool moved = in.mouse_x != last_mouse_x_ || in.mouse_y != last_mouse_y_;
+        last_mouse_x_ = in.mouse_x;
+        last_mouse_y_ = in.mouse_y;
+        active = active || !in.empty() || moved || in.mouse_down[0] || !in.held.empty();
+    }
+    const bool had_input = !pending_.empty() && active;
+    pending_.clear();
+    act(t.tick(v.time_s, active));
+    // frames: every step in a window; in a lock-step run at the steps with input, the few after
+    // (ImGui answers a release the frame after it sees it), and every frame_every_steps
+    if (had_input || (ui_ && ui_->queued() > 0)) input_frames_ = 2;
+    const int every = options_.frame_every_steps;
+    if (input_frames_ > 0 || (every > 0 && step.step % every == 0) || capture_) {
+        step.want_frame(bool(capture_));
+        if (input_frames_ > 0) --input_frames_;
+    }
+}
+
+void TrainerDriver::on_frame(const runner::FrameContext& frame)
+{
+    if (capture_ && frame.pixels) {
+        auto sink = std::move(capture_);
+        capture_ = nullptr;
+        sink(*frame.pixels);
+    }
+}
+
+}  // namespace echosim::trainer

@@ -1,0 +1,75 @@
+// The trainer in the runner (issue 32): one observer and the UI pass. Each step the driver hands
+// the session's view to the trainer's scorer (as `echosim exam`'s ScorerObserver does), then the
+// step's input (fed by the runner's Input: the window's callbacks or a test's script) to the
+// trainer's shortcut keys, then the idle clock; the UI pass gets the same input and draws the
+// trainer's screens (trainer/trainer_screens.hpp), where a button acts as its key does. A call
+// made by key or button lands after the step's observation, at the step's time: the moment a
+// scripted exam's call lands at, so a lesson driven by keys is scored as the same script headless.
+//
+// The runner's volumes are one case's: a lesson started on another case asks the driver's owner to
+// rebuild the runner for it (case_wanted(), should_stop()); the trainer outlives runners.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "echo/echo_frame.hpp"
+#include "io/png.hpp"
+#include "runner/runner.hpp"
+#include "trainer/trainer.hpp"
+#include "ui/ui_pass.hpp"
+
+namespace echosim::trainer {
+
+struct DriverOptions {
+    ui::UiOptions ui;
+    // with Drawing::on_request (a lock-step run), a frame every this many steps besides the steps
+    // with input (0: only those); with Drawing::every_step every step draws anyway
+    int frame_every_steps = 6;
+    std::string loaded_case;  // the id of the case whose volumes the runner holds
+    std::shared_ptr<const io::Volume> volume, labels;  // for the report's station images
+    echo::PatientCase patient;
+};
+
+class TrainerDriver final : public runner::Observer {
+public:
+    TrainerDriver(std::shared_ptr<Trainer> trainer, DriverOptions options);
+
+    // The UI pass for the runner's configuration (PassPlace::overlay).
+    runner::PassFactory pass();
+    ui::UiPass* ui() { return ui_; }
+    Trainer& trainer() { return *trainer_; }
+
+    // The step's input (the runner's Input calls it at its poll).
+    void feed(const ui::UiInput& input);
+
+    bool quit_requested() const { return quit_; }
+    // The case a started lesson needs when the runner holds another's volumes.
+    const std::optional<std::string>& case_wanted() const { return case_wanted_; }
+    // The next frame read back (offscreen) into `sink`, once.
+    void capture(std::function<void(const io::RgbaImage&)> sink) { capture_ = std::move(sink); }
+
+    void on_attach(runner::Runner& runner) override;
+    bool should_stop() override { return quit_ || case_wanted_.has_value(); }
+    void on_step(runner::StepContext& step) override;
+    void on_frame(const runner::FrameContext& frame) override;
+
+private:
+    void act(Action a);
+
+    std::shared_ptr<Trainer> trainer_;
+    DriverOptions options_;
+    ui::UiPass* ui_ = nullptr;
+    runner::Runner* runner_ = nullptr;
+    std::vector<ui::UiInput> pending_;
+    float last_mouse_x_ = -1, last_mouse_y_ = -1;
+    bool quit_ = false;
+    std::optional<std::string> case_wanted_;
+    std::function<void(const io::RgbaImage&)> capture_;
+    int input_frames_ = 0;  // frames still wanted after an input (ImGui sees a release a frame later)
+};
+
+}  // namespace echosim::trainer

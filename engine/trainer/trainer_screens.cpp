@@ -1,0 +1,380 @@
+#include "trainer/trainer_screens.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "runner/frame.hpp"
+
+namespace echosim::trainer {
+namespace {
+
+constexpr ImGuiWindowFlags kFixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                    ImGuiWindowFlags_NoSavedSettings;
+
+const ImVec4 kGreen(0.30f, 0.80f, 0.40f, 1.0f), kRed(0.95f, 0.30f, 0.25f, 1.0f), kAmber(0.98f, 0.75f, 0.20f, 1.0f),
+    kGrey(0.60f, 0.62f, 0.66f, 1.0f), kBlue(0.40f, 0.65f, 1.0f, 1.0f);
+
+ImU32 u32(const ImVec4& c, float alpha = 1.0f) { return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, c.w * alpha)); }
+
+const char* lesson_label(exam::Protocol p)
+{
+    switch (p) {
+    case exam::Protocol::two_point: return "Two-point (CFV, popliteal)";
+    case exam::Protocol::three_point: return "Three-point (CFV, SFJ, popliteal)";
+    case exam::Protocol::extended: return "Extended (groin to knee, every 2 cm)";
+    }
+    return "?";
+}
+
+bool big_button(const char* label, const ImVec2& size, const ui::UiFonts& fonts, const ImVec4& colour)
+{
+    ImGui::PushFont(fonts.large);
+    ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(colour.x * 0.55f, colour.y * 0.55f, colour.z * 0.55f, 1.0f));
+    ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(colour.x * 0.75f, colour.y * 0.75f, colour.z * 0.75f, 1.0f));
+    ImGui::PushStyleColor(ImGuiCol_ButtonActive, colour);
+    const bool pressed = ImGui::Button(label, size);
+    ImGui::PopStyleColor(3);
+    ImGui::PopFont();
+    return pressed;
+}
+
+// --- start screen
+
+Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+{
+    Action action = Action::none;
+    StartForm& form = t.form();
+    const float w = std::min(float(extent.width) * 0.9f, 760.0f * scale);
+    const float h = std::min(float(extent.height) * 0.92f, 700.0f * scale);
+    ImGui::SetNextWindowPos(ImVec2((float(extent.width) - w) * 0.5f, (float(extent.height) - h) * 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(w, h));
+    ImGui::Begin("echosim trainer", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar);
+    ImGui::PushFont(fonts.large);
+    ImGui::TextUnformatted("Compression ultrasound of the leg's veins");
+    ImGui::PopFont();
+    ImGui::TextColored(kGrey, "A lesson: find each station of the protocol, press until the vein closes (or does not), and call it.");
+    if (!t.message().empty()) ImGui::TextColored(kAmber, "%s", t.message().c_str());
+    if (!t.last_error().empty()) ImGui::TextColored(kRed, "%s", t.last_error().c_str());
+    ImGui::Separator();
+
+    ImGui::TextUnformatted("Trainee");
+    ImGui::SetNextItemWidth(w * 0.5f);
+    ImGui::InputTextWithHint("##trainee", "your name, for the records", &form.trainee);
+
+    ImGui::Spacing();
+    ImGui::TextUnformatted("Lesson  (F1, F2, F3)");
+    for (exam::Protocol p : Trainer::kLessons)
+        if (ImGui::RadioButton(lesson_label(p), form.lesson == p)) form.lesson = p;
+
+    ImGui::Spacing();
+    ImGui::TextUnformatted("Case  (F4 / F5 previous / next, F6 random)");
+    ImGui::SetNextItemWidth(w * 0.7f);
+    const std::vector<exam::Scenario>& cases = t.cases();
+    const std::string shown = form.case_index < 0 ? std::string("Random case (not told)") : cases[std::size_t(form.case_index)].title;
+    if (ImGui::BeginCombo("##case", shown.c_str())) {
+        if (ImGui::Selectable("Random case (not told)", form.case_index < 0)) form.case_index = -1;
+        for (std::size_t i = 0; i < cases.size(); ++i)
+            if (ImGui::Selectable(cases[i].title.c_str(), form.case_index == int(i))) form.case_index = int(i);
+        ImGui::EndCombo();
+    }
+    if (form.case_index >= 0) {
+        const exam::Scenario& c = cases[std::size_t(form.case_index)];
+        ImGui::PushTextWrapPos(w - 20 * scale);
+        ImGui::TextColored(kGrey, "%s", c.description.c_str());
+        ImGui::PopTextWrapPos();
+    }
+
+    ImGui::Spacing();
+    ImGui::TextUnformatted("Difficulty  (F7)");
+    for (Difficulty d : {Difficulty::beginner, Difficulty::intermediate, Difficulty::expert}) {
+        if (ImGui::RadioButton(difficulty_name(d), form.difficulty == d)) form.difficulty = d;
+        ImGui::SameLine();
+    }
+    ImGui::NewLine();
+    ImGui::TextColored(kGrey, "Beginner: guidance arrow, directions and distances. Intermediate: fainter, no distances. Expert: none.");
+
+    ImGui::Spacing();
+    if (big_button("Start  (Enter)", ImVec2(w * 0.4f, 56 * scale), fonts, kGreen)) {
+        t.start(view.time_s);
+        action = Action::started;
+    }
+    ImGui::Spacing();
+    ImGui::Separator();
+    ImGui::TextColored(kGrey, "In the exam: C compressible, N not compressible, End finish, H guidance on/off.");
+    ImGui::TextColored(kGrey, "The probe: right-drag or arrows slide it, W/S press, Q/E and A/D tilt, R levels it.");
+    ImGui::TextColored(kGrey, "%s", t.options().kiosk ? "Instructor: Ctrl+Alt+Q quits." : "Esc or Ctrl+Alt+Q quits.");
+    ImGui::End();
+    return action;
+}
+
+// --- exam screen
+
+// The leg map: the stations by their height on the leg (LPS z: the groin at the top), the probe's
+// place, and the guidance arrow from it to the next station.
+void leg_map(const Trainer& t, const Guidance* g, std::optional<std::size_t> target, float alpha, float width, float height, float scale)
+{
+    const std::vector<exam::StationTruth>& truth = t.scorer().truth();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    ImGui::Dummy(ImVec2(width, height));
+    double top = -1e9, bottom = 1e9;
+    for (const exam::StationTruth& s : truth) top = std::max(top, s.vein.centre.z), bottom = std::min(bottom, s.vein.centre.z);
+    const double margin = std::max(20.0, 0.08 * (top - bottom));
+    top += margin;
+    bottom -= margin;
+    const float x = o.x + width * 0.30f;
+    auto y_of = [&](double z) { return o.y + float((top - z) / (top - bottom)) * height; };
+    dl->AddRectFilled(ImVec2(x - 10 * scale, o.y), ImVec2(x + 10 * scale, o.y + height), u32(ImVec4(0.35f, 0.25f, 0.25f, 1)), 8 * scale);
+    dl->AddText(ImVec2(o.x, o.y), u32(kGrey), "groin");
+    dl->AddText(ImVec2(o.x, o.y + height - ImGui::GetFontSize()), u32(kGrey), "knee");
+    const bool expert = t.form().difficulty == Difficulty::expert;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        const float y = y_of(truth[i].vein.centre.z);
+        ImVec4 c = kGrey;
+        if (t.station_done(i)) c = expert ? kBlue : (t.station_wrong(i) ? kRed : kGreen);
+        else if (!expert && t.station_wrong(i)) c = kRed;
+        const float r = (target && *target == i ? 7.0f : 5.0f) * scale;
+        dl->AddCircleFilled(ImVec2(x, y), r, u32(c));
+        if (target && *target == i) dl->AddCircle(ImVec2(x, y), r + 3 * scale, u32(kAmber), 0, 2 * scale);
+        if (truth.size() <= 4 || i == 0 || i + 1 == truth.size() || (target && *target == i))
+            dl->AddText(ImVec2(x + 16 * scale, y - ImGui::GetFontSize() * 0.5f), u32(c), truth[i].name.c_str());
+    }
+    // the probe
+    const double pz = double(t.last_sample().face.position.z);
+    if (t.last_sample().time_s > 0 && pz < top && pz > bottom) {
+        const float y = y_of(pz);
+        const float px = x - 22 * scale;
+        dl->AddTriangleFilled(ImVec2(px - 8 * scale, y - 7 * scale), ImVec2(px - 8 * scale, y + 7 * scale), ImVec2(px + 4 * scale, y), u32(kAmber));
+        // the arrow to the next station
+        if (g && target && alpha > 0 && !g->there) {
+            const float ty = y_of(truth[*target].vein.centre.z);
+            if (std::abs(ty - y) > 6 * scale) {
+                const float ax = px - 16 * scale;
+                dl->AddLine(ImVec2(ax, y), ImVec2(ax, ty), u32(kAmber, alpha), 3 * scale);
+                const float dir = ty > y ? 1.0f : -1.0f;
+                dl->AddTriangleFilled(ImVec2(ax - 7 * scale, ty - dir * 10 * scale), ImVec2(ax + 7 * scale, ty - dir * 10 * scale), ImVec2(ax, ty),
+                                      u32(kAmber, alpha));
+            }
+        }
+    }
+}
+
+// The turn dial: the probe's array as a bar, the vein's course through it, the turn as an arc.
+void turn_dial(const Guidance& g, float alpha, float size, float scale)
+{
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    ImGui::Dummy(ImVec2(size, size));
+    const ImVec2 c(o.x + size * 0.5f, o.y + size * 0.5f);
+    const float r = size * 0.42f;
+    dl->AddCircle(c, r, u32(kGrey), 48, 1.5f * scale);
+    // the array across (the image's width) and the vein's course: transverse when they are square
+    dl->AddLine(ImVec2(c.x - r * 0.8f, c.y), ImVec2(c.x + r * 0.8f, c.y), u32(kBlue), 5 * scale);
+    const float a = float(g.turn_deg * 3.14159265358979 / 180.0);
+    const ImVec2 v(std::sin(a) * r, -std::cos(a) * r);
+    dl->AddLine(ImVec2(c.x - v.x, c.y - v.y), ImVec2(c.x + v.x, c.y + v.y), u32(ImVec4(0.45f, 0.55f, 0.95f, 1.0f), alpha), 2.5f * scale);
+    if (std::abs(g.turn_deg) >= 5 && alpha > 0) {
+        // the arc the probe turns through
+        const float start = -3.14159265f * 0.5f, end = start + a;
+        dl->PathArcTo(c, r * 0.65f, std::min(start, end), std::max(start, end), 24);
+        dl->PathStroke(u32(kAmber, alpha), 0, 3 * scale);
+    }
+}
+
+// The force gauge: 0 to past the excessive limit, the adequate band green, beyond the limit red,
+// the live force as a bar and a number.
+void force_gauge(double force_N, const exam::ScoringBands& bands, float width, float scale)
+{
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    const float h = 26 * scale;
+    ImGui::Dummy(ImVec2(width, h + ImGui::GetFontSize() + 4 * scale));
+    const double top = std::max(bands.excessive_force_N * 1.3, force_N * 1.05);
+    auto x_of = [&](double f) { return o.x + float(std::clamp(f / top, 0.0, 1.0)) * width; };
+    dl->AddRectFilled(o, ImVec2(o.x + width, o.y + h), u32(ImVec4(0.18f, 0.19f, 0.22f, 1)));
+    dl->AddRectFilled(ImVec2(x_of(bands.adequate_force_N), o.y), ImVec2(x_of(bands.excessive_force_N), o.y + h), u32(ImVec4(0.20f, 0.45f, 0.25f, 1)));
+    dl->AddRectFilled(ImVec2(x_of(bands.excessive_force_N), o.y), ImVec2(o.x + width, o.y + h), u32(ImVec4(0.50f, 0.18f, 0.16f, 1)));
+    const ImVec4 c = force_N > bands.excessive_force_N ? kRed : force_N >= bands.adequate_force_N ? kGreen : kAmber;
+    dl->AddRectFilled(ImVec2(o.x, o.y + h * 0.3f), ImVec2(x_of(force_N), o.y + h * 0.7f), u32(c));
+    dl->AddLine(ImVec2(x_of(force_N), o.y - 2 * scale), ImVec2(x_of(force_N), o.y + h + 2 * scale), u32(ImVec4(1, 1, 1, 1)), 2 * scale);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.0f N", bands.adequate_force_N);
+    dl->AddText(ImVec2(x_of(bands.adequate_force_N) - 8 * scale, o.y + h + 2 * scale), u32(kGreen), buf);
+    std::snprintf(buf, sizeof buf, "%.0f N", bands.excessive_force_N);
+    dl->AddText(ImVec2(x_of(bands.excessive_force_N) - 8 * scale, o.y + h + 2 * scale), u32(kRed), buf);
+}
+
+Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+{
+    Action action = Action::none;
+    const exam::Scenario& lesson = t.lesson();
+    const exam::Scorer& scorer = t.scorer();
+    const std::vector<exam::StationTruth>& truth = scorer.truth();
+    // the panel over the leg's view, left of the echographic image
+    const render::TargetRect image = runner::echo_panel_rect(extent, echo::ImagePlane{});
+    const float image_left = image.x * float(extent.width);
+    const float w = std::min(380.0f * scale, std::max(200.0f, image_left * 0.6f));
+    ImGui::SetNextWindowPos(ImVec2(8 * scale, 8 * scale));
+    ImGui::SetNextWindowSize(ImVec2(w, float(extent.height) - 16 * scale));
+    ImGui::SetNextWindowBgAlpha(0.82f);
+    ImGui::Begin("Lesson", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
+    ImGui::TextColored(kGrey, "%s lesson, %s", exam::protocol_name(lesson.protocol), difficulty_name(t.form().difficulty));
+    ImGui::PushTextWrapPos(w - 12 * scale);
+    ImGui::TextUnformatted(t.form().case_index < 0 ? "Random case" : lesson.title.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::Separator();
+
+    // the step
+    const std::optional<std::size_t> target = t.target();
+    std::size_t done = 0;
+    for (std::size_t i = 0; i < truth.size(); ++i) done += t.station_done(i) ? 1 : 0;
+    ImGui::PushFont(fonts.large);
+    if (target) ImGui::Text("Station %zu of %zu: %s", *target + 1, truth.size(), truth[*target].name.c_str());
+    else ImGui::TextUnformatted("Every station done");
+    ImGui::PopFont();
+    const std::optional<std::size_t> at = scorer.current_station();
+    if (at) ImGui::TextColored(kGreen, "The probe is at %s.", truth[*at].name.c_str());
+    else ImGui::TextColored(kGrey, "The probe is at no station.");
+
+    // guidance towards the next station
+    const GuidanceLevel level = t.guidance_on() ? guidance_level(t.form().difficulty) : GuidanceLevel{0, false, false};
+    std::optional<Guidance> g;
+    if (target) g = guide(view.probe, truth[*target], lesson.bands);
+    if (g && level.text) {
+        ImGui::PushTextWrapPos(w - 12 * scale);
+        ImGui::TextColored(kAmber, "%s", guidance_text(*g, level).c_str());
+        ImGui::PopTextWrapPos();
+    } else if (!target) {
+        ImGui::TextColored(kGreen, "Finish the exam to see the report (End).");
+    }
+    const float map_h = std::max(120.0f * scale, float(extent.height) * 0.30f);
+    ImGui::BeginGroup();
+    leg_map(t, g ? &*g : nullptr, target, level.arrow_alpha, w * 0.55f, map_h, scale);
+    ImGui::EndGroup();
+    ImGui::SameLine();
+    ImGui::BeginGroup();
+    ImGui::TextColored(kGrey, "Turn");
+    if (g) turn_dial(*g, level.arrow_alpha, w * 0.32f, scale);
+    ImGui::Text("%zu / %zu done", done, truth.size());
+    ImGui::EndGroup();
+
+    // the force
+    ImGui::Separator();
+    ImGui::Text("Force %.1f N", view.probe_force_N);
+    force_gauge(view.probe_force_N, lesson.bands, w - 28 * scale, scale);
+    if (at) {
+        const exam::Scorer::StationProgress p = scorer.progress(*at);
+        ImGui::TextColored(p.peak_force_N >= lesson.bands.adequate_force_N ? kGreen : kGrey, "Deepest press here %.1f N", p.peak_force_N);
+    }
+
+    // the calls
+    ImGui::Separator();
+    const float bw = (w - 34 * scale) * 0.5f;
+    if (big_button("Compressible\n(C)", ImVec2(bw, 64 * scale), fonts, kGreen)) t.call(view.time_s, exam::Call::compressible);
+    ImGui::SameLine();
+    if (big_button("Not compr.\n(N)", ImVec2(bw, 64 * scale), fonts, kRed)) t.call(view.time_s, exam::Call::not_compressible);
+    if (const std::optional<std::size_t> last = scorer.last_examined()) {
+        const exam::Call c = scorer.progress(*last).call;
+        ImGui::TextColored(kGrey, "%s: %s", truth[*last].name.c_str(), c == exam::Call::none ? "not called yet" : exam::call_name(c));
+    }
+    if (ImGui::Button("Finish the exam (End)", ImVec2(w - 24 * scale, 0))) {
+        t.finish();
+        action = Action::finished;
+    }
+    ImGui::End();
+    return action;
+}
+
+// --- report screen
+
+Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+{
+    const exam::ExamReport& r = t.report();
+    const float w = std::min(float(extent.width) * 0.94f, 1100.0f * scale);
+    const float h = float(extent.height) * 0.94f;
+    ImGui::SetNextWindowPos(ImVec2((float(extent.width) - w) * 0.5f, float(extent.height) * 0.03f));
+    ImGui::SetNextWindowSize(ImVec2(w, h));
+    ImGui::Begin("Report", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar);
+    ImGui::PushFont(fonts.large);
+    ImGui::TextColored(r.passed ? kGreen : kRed, "Score %.0f %%  (pass mark %.0f %%): %s", 100 * r.score, 100 * r.pass_mark, r.passed ? "passed" : "not passed");
+    ImGui::PopFont();
+    ImGui::Text("%s%s%s, %s protocol", r.trainee.empty() ? "" : r.trainee.c_str(), r.trainee.empty() ? "" : ": ", r.case_title.c_str(), r.protocol.c_str());
+    ImGui::PushTextWrapPos(w - 20 * scale);
+    ImGui::TextColored(kAmber, "%s", r.conclusion.c_str());
+    ImGui::PopTextWrapPos();
+    if (!t.last_error().empty()) ImGui::TextColored(kRed, "%s", t.last_error().c_str());
+
+    const float table_h = h * 0.42f;
+    if (ImGui::BeginTable("stations", 7, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, table_h))) {
+        ImGui::TableSetupScrollFreeze(0, 1);
+        for (const char* c : {"Station", "Reached", "Peak force", "Vein closed to", "Truth", "Call", ""}) ImGui::TableSetupColumn(c);
+        ImGui::TableHeadersRow();
+        for (const exam::StationResult& s : r.stations) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(s.name.c_str());
+            ImGui::TableNextColumn();
+            ImGui::TextColored(s.reached ? kGreen : kRed, "%s", s.reached ? "yes" : "no");
+            ImGui::TableNextColumn();
+            const bool ok_force = s.peak_force_N >= r.adequate_force_N && s.peak_force_N <= r.excessive_force_N;
+            ImGui::TextColored(ok_force ? kGreen : kAmber, "%.1f N", s.peak_force_N);
+            ImGui::TableNextColumn();
+            if (s.deepest_press_at_s >= 0) ImGui::Text("%.0f %%", 100 * s.collapse_ratio);
+            else ImGui::TextColored(kGrey, "-");
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(s.thrombosed ? "thrombus" : "normal");
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(exam::call_name(s.call));
+            ImGui::TableNextColumn();
+            ImGui::TextColored(s.call_correct ? kGreen : kRed, "%s", s.call_correct ? "right" : "wrong");
+        }
+        ImGui::EndTable();
+    }
+    ImGui::Text("Errors flagged: %zu", r.errors.size());
+    for (const exam::FlaggedError& e : r.errors)
+        ImGui::TextColored(kRed, "  %s at %s: %s", exam::error_name(e.kind), e.station.empty() ? "the exam" : e.station.c_str(), e.detail.c_str());
+    ImGui::Text("Time %.0f s, probe path %.0f mm", r.motion.duration_s, r.motion.path_mm);
+    if (!t.report_dir().empty()) ImGui::TextColored(kGrey, "Report: %s", (t.report_dir() / "report.html").string().c_str());
+
+    ImGui::Separator();
+    const std::vector<exam::SessionRecord>& earlier = t.earlier();
+    ImGui::Text("Sessions of %s in the records: %zu", r.trainee.empty() ? "this trainee" : r.trainee.c_str(), earlier.size());
+    if (!earlier.empty() && ImGui::BeginTable("earlier", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, h * 0.18f))) {
+        for (const char* c : {"#", "Case", "Protocol", "Score"}) ImGui::TableSetupColumn(c);
+        ImGui::TableHeadersRow();
+        for (auto it = earlier.rbegin(); it != earlier.rend(); ++it) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::Text("%lld", static_cast<long long>(it->id));
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(it->case_title.c_str());
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(it->protocol.c_str());
+            ImGui::TableNextColumn();
+            ImGui::TextColored(it->passed ? kGreen : kRed, "%.0f %%", 100 * it->score);
+        }
+        ImGui::EndTable();
+    }
+    if (big_button("New lesson  (Enter)", ImVec2(w * 0.3f, 52 * scale), fonts, kBlue)) t.new_lesson();
+    ImGui::End();
+    return Action::none;
+}
+
+}  // namespace
+
+Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+{
+    switch (trainer.screen()) {
+    case Screen::start: return start_screen(trainer, view, extent, fonts, scale);
+    case Screen::exam: return exam_screen(trainer, view, extent, fonts, scale);
+    case Screen::report: return report_screen(trainer, extent, fonts, scale);
+    }
+    return Action::none;
+}
+
+}  // namespace echosim::trainer

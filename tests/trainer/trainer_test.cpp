@@ -1,0 +1,196 @@
+// The trainer's state without a GPU (trainer/trainer.hpp, lesson.hpp, guidance.hpp): the lessons'
+// stations, the guidance's directions from the truth, the screens' keys (the kiosk's Esc), calls
+// landing on the station examined, the idle timeout scoring and storing the session.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "exam/records.hpp"
+#include "exam/scenario.hpp"
+#include "trainer/guidance.hpp"
+#include "trainer/lesson.hpp"
+#include "trainer/trainer.hpp"
+
+namespace echosim {
+namespace {
+
+using trainer::Screen;
+
+ui::UiInput key(ui::Key k)
+{
+    ui::UiInput in;
+    in.pressed = {k};
+    return in;
+}
+
+trainer::TrainerOptions options(const std::string& name)
+{
+    trainer::TrainerOptions o;
+    o.cases = exam::shipped_cases();
+    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("trainer_" + name);
+    std::filesystem::remove_all(dir);
+    o.records = dir / "records.sqlite";
+    o.reports = dir / "reports";
+    o.stamp_time = false;
+    return o;
+}
+
+// a report from the scorer alone (no images): the driver's is tested on the GPU
+exam::ExamReport plain_report(const exam::Scorer& s, const std::filesystem::path&, const std::string& trainee)
+{
+    exam::ExamReport r = s.finish({}, {});
+    r.trainee = trainee;
+    return r;
+}
+
+TEST(TrainerLesson, TheLessonsKeepTheirProtocolsStations)
+{
+    const exam::Scenario c = exam::read_scenario(exam::shipped_case("healthy"));
+    ASSERT_EQ(c.protocol, exam::Protocol::extended);
+    const exam::Scenario two = trainer::lesson_scenario(c, exam::Protocol::two_point);
+    ASSERT_EQ(two.stations.size(), 2u);
+    EXPECT_EQ(two.stations[0].segment, echo::VeinSegment::cfv);
+    EXPECT_EQ(two.stations[1].segment, echo::VeinSegment::popliteal);
+    EXPECT_EQ(two.protocol, exam::Protocol::two_point);
+    const exam::Scenario three = trainer::lesson_scenario(c, exam::Protocol::three_point);
+    ASSERT_EQ(three.stations.size(), 3u);
+    EXPECT_EQ(three.stations[1].name, "SFJ");
+    const exam::Scenario extended = trainer::lesson_scenario(c, exam::Protocol::extended);
+    EXPECT_EQ(extended.stations.size(), c.stations.size());
+}
+
+TEST(TrainerGuidance, PointsFromTheProbeToTheStationOnTheTruth)
+{
+    trainer::Trainer t(options("guidance"));
+    ASSERT_TRUE(t.select_case("healthy"));
+    t.form().lesson = exam::Protocol::extended;
+    t.start(0);
+    const exam::StationTruth& st = t.scorer().truth()[5];
+    const exam::ScoringBands& bands = t.lesson().bands;
+    // at the ideal probe: there, nothing to slide or turn
+    const trainer::Guidance at = trainer::guide(st.ideal_probe, st, bands);
+    EXPECT_TRUE(at.there);
+    EXPECT_NEAR(at.along_mm, 0, 1e-3);
+    EXPECT_NEAR(at.across_mm, 0, 1e-3);
+    EXPECT_NEAR(at.turn_deg, 0, 1e-3);
+    // 40 mm further down the leg (towards the knee): slide 40 mm towards the groin
+    glm::dvec3 up = st.vein.direction;
+    if (up.z < 0) up = -up;
+    Pose below = st.ideal_probe;
+    below.position -= glm::vec3(40.0 * up);
+    const trainer::Guidance g = trainer::guide(below, st, bands);
+    EXPECT_FALSE(g.there);
+    EXPECT_NEAR(g.along_mm, 40, 0.5);
+    EXPECT_NEAR(g.across_mm, 0, 0.5);
+    const trainer::GuidanceLevel beginner = trainer::guidance_level(trainer::Difficulty::beginner);
+    EXPECT_NE(trainer::guidance_text(g, beginner).find("40 mm towards the groin"), std::string::npos) << trainer::guidance_text(g, beginner);
+    // turned 30 degrees about its beam: turn back by 30, the other way
+    Pose turned = st.ideal_probe;
+    turned.orientation = glm::angleAxis(glm::radians(30.0f), st.ideal_probe.axis_y()) * turned.orientation;
+    const trainer::Guidance tg = trainer::guide(turned, st, bands);
+    EXPECT_NEAR(std::abs(tg.turn_deg), 30, 0.5);
+    EXPECT_FALSE(tg.there);
+    // the difficulty fades it: no numbers for an intermediate, nothing for an expert
+    const std::string mid = trainer::guidance_text(g, trainer::guidance_level(trainer::Difficulty::intermediate));
+    EXPECT_NE(mid.find("towards the groin"), std::string::npos);
+    EXPECT_EQ(mid.find("40"), std::string::npos);
+    EXPECT_EQ(trainer::guidance_text(g, trainer::guidance_level(trainer::Difficulty::expert)), "");
+    EXPECT_EQ(trainer::guidance_level(trainer::Difficulty::expert).arrow_alpha, 0.0f);
+}
+
+TEST(TrainerScreens, KeysDriveTheStartScreenAndTheKioskKeepsEsc)
+{
+    trainer::TrainerOptions o = options("keys");
+    trainer::Trainer t(o);
+    EXPECT_EQ(t.screen(), Screen::start);
+    EXPECT_EQ(t.keys(key(ui::Key::escape), 0, false), trainer::Action::quit);  // not a kiosk: Esc quits
+    t.keys(key(ui::Key::f1), 0, false);
+    EXPECT_EQ(t.form().lesson, exam::Protocol::two_point);
+    t.keys(key(ui::Key::f2), 0, false);
+    EXPECT_EQ(t.form().lesson, exam::Protocol::three_point);
+    t.keys(key(ui::Key::f5), 0, false);
+    EXPECT_EQ(t.form().case_index, 1);
+    t.keys(key(ui::Key::f4), 0, false);
+    t.keys(key(ui::Key::f4), 0, false);
+    EXPECT_EQ(t.form().case_index, int(t.cases().size()) - 1);
+    t.keys(key(ui::Key::f6), 0, false);
+    EXPECT_EQ(t.form().case_index, -1);
+    t.keys(key(ui::Key::f7), 0, false);
+    EXPECT_EQ(t.form().difficulty, trainer::Difficulty::intermediate);
+
+    o.kiosk = true;
+    trainer::Trainer kiosk(o);
+    EXPECT_EQ(kiosk.keys(key(ui::Key::escape), 0, false), trainer::Action::none);
+    ui::UiInput combo = key(ui::letter('q'));
+    combo.ctrl = combo.alt = true;
+    EXPECT_EQ(kiosk.keys(combo, 0, false), trainer::Action::quit);
+    // Enter starts; in the exam Esc still does not quit
+    EXPECT_EQ(kiosk.keys(key(ui::Key::enter), 1.0, false), trainer::Action::started);
+    EXPECT_EQ(kiosk.screen(), Screen::exam);
+    EXPECT_EQ(kiosk.keys(key(ui::Key::escape), 1.5, false), trainer::Action::none);
+    EXPECT_EQ(kiosk.screen(), Screen::exam);
+}
+
+TEST(TrainerScreens, ACallLandsOnTheStationExaminedAndFinishStoresTheSession)
+{
+    trainer::Trainer t(options("call"));
+    t.set_report_maker(plain_report);
+    ASSERT_TRUE(t.select_case("healthy"));
+    t.form().trainee = "Ada";
+    t.form().lesson = exam::Protocol::two_point;
+    t.start(0);
+    const exam::StationTruth& st = t.scorer().truth()[0];
+    EXPECT_EQ(t.target(), std::optional<std::size_t>(0));
+    // pressed at the first station at 12 N (in the 8..16 N band), then called
+    Pose pressed = pressed_along_beam(st.ideal_probe, 10);
+    t.observe({0.5, pressed, 12.0, nullptr});
+    EXPECT_EQ(t.scorer().current_station(), std::optional<std::size_t>(0));
+    EXPECT_FALSE(t.station_done(0));
+    // a letter typed into a text field is no call
+    t.keys(key(ui::letter('c')), 0.6, true);
+    EXPECT_EQ(t.scorer().progress(0).call, exam::Call::none);
+    t.keys(key(ui::letter('c')), 0.6, false);
+    EXPECT_EQ(t.scorer().progress(0).call, exam::Call::compressible);
+    EXPECT_TRUE(t.station_done(0));
+    EXPECT_FALSE(t.station_wrong(0));
+    EXPECT_EQ(t.target(), std::optional<std::size_t>(1));
+    EXPECT_EQ(t.keys(key(ui::Key::end), 0.7, false), trainer::Action::finished);
+    EXPECT_EQ(t.screen(), Screen::report);
+    EXPECT_EQ(t.report().trainee, "Ada");
+    ASSERT_EQ(t.report().stations.size(), 2u);
+    EXPECT_TRUE(t.report().stations[0].reached);
+    EXPECT_EQ(t.report().stations[0].call, exam::Call::compressible);
+    EXPECT_FALSE(t.report().stations[1].reached);
+    EXPECT_GT(t.stored_id(), 0);
+    ASSERT_EQ(t.earlier().size(), 1u);
+    EXPECT_EQ(t.earlier()[0].trainee, "Ada");
+    t.keys(key(ui::Key::enter), 1.0, false);
+    EXPECT_EQ(t.screen(), Screen::start);
+}
+
+TEST(TrainerIdle, TheIdleTimeoutStoresTheSessionAndReturnsToTheStartScreen)
+{
+    trainer::TrainerOptions o = options("idle");
+    o.idle_timeout_s = 10;
+    o.kiosk = true;
+    trainer::Trainer t(o);
+    t.set_report_maker(plain_report);
+    t.form().trainee = "Idle Ida";
+    t.start(0);
+    t.observe({0.1, t.scorer().truth()[0].ideal_probe, 0.0, nullptr});
+    EXPECT_EQ(t.tick(0.1, true), trainer::Action::none);
+    // the probe still, no input: nothing happens before the timeout...
+    EXPECT_EQ(t.tick(9.0, false), trainer::Action::none);
+    EXPECT_EQ(t.screen(), Screen::exam);
+    // ...and at it the session is scored, stored and the start screen shown
+    EXPECT_EQ(t.tick(10.2, false), trainer::Action::finished);
+    EXPECT_EQ(t.screen(), Screen::start);
+    EXPECT_NE(t.message().find("idle"), std::string::npos);
+    exam::Records records(o.records, {.create = false});
+    const std::vector<exam::SessionRecord> stored = records.sessions("Idle Ida");
+    ASSERT_EQ(stored.size(), 1u);
+    EXPECT_EQ(stored[0].case_id, t.lesson().id);
+}
+
+}  // namespace
+}  // namespace echosim
