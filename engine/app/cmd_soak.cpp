@@ -31,7 +31,10 @@ int run_soak(const SoakArgs& args)
     std::printf("echosim soak: %.0f s of a scripted session (warm-up %.1f s), making its volume...\n", o.seconds, soak_warmup_s(o.seconds));
     std::fflush(stdout);
     const SoakResult r = run_soak_session(o);
-    if (r.stopped_by_signal)
+    if (r.stopped_by_signal && !r.session_started)
+        std::printf("echosim soak: stopped by %s after %.1f of %.0f s, while its volume was made (no session was started)\n",
+                    StopSignals::name(r.stopped_by_signal), r.seconds, r.requested_s);
+    else if (r.stopped_by_signal)
         std::printf("echosim soak: stopped by %s after %.1f of %.0f s (the device's force set to zero, the session stopped)\n",
                     StopSignals::name(r.stopped_by_signal), r.seconds, r.requested_s);
 

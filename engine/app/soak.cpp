@@ -25,13 +25,24 @@
 namespace echosim::app {
 namespace {
 
+// A stop asked for while the volume is made (SoakOptions::stop_requested): its signal.
+struct StoppedInSetUp {
+    int signal = 0;
+};
+
 // The image's volume: the healthy case made as `echosim run` makes it, but coarser (0.6 mm voxels
 // from 60 frames of 0.3 mm pixels), so it takes seconds, not a minute and a half; its content
-// does not change what a frame costs in memory.
-VolumePair soak_volume(const scene::LegModel& leg)
+// does not change what a frame costs in memory. Those seconds are tens under a sanitizer, so a
+// stop asked for meanwhile is looked at between chunks of a few frames (and the hole filling's
+// steps) and ends the making there: throws StoppedInSetUp.
+VolumePair soak_volume(const scene::LegModel& leg, const std::function<int()>& stop_requested)
 {
-    const echo::CaseVolumeOptions coarse{.voxel_mm = 0.6, .frames = 60, .pixel_mm = 0.3};
-    echo::CaseVolume made = echo::make_case_volume(leg, echo::Case::healthy, coarse);
+    echo::CaseVolumeOptions coarse{.voxel_mm = 0.6, .frames = 60, .pixel_mm = 0.3};
+    coarse.chunk_frames = 6;
+    const auto look = [&](const std::string&, double) {
+        if (const int signal = stop_requested ? stop_requested() : 0) throw StoppedInSetUp{signal};
+    };
+    echo::CaseVolume made = echo::make_case_volume(leg, echo::Case::healthy, coarse, look);
     return {std::make_shared<const io::Volume>(std::move(made.volume)), std::make_shared<const io::Volume>(std::move(made.labels)),
             "the healthy case at 0.6 mm"};
 }
@@ -201,7 +212,18 @@ SoakResult run_soak_session(const SoakOptions& o)
     r.width = o.width;
     r.height = o.height;
     const scene::LegModel leg;  // the session's leg is made the same way
-    const VolumePair volumes = o.volumes.volume ? o.volumes : soak_volume(leg);
+    VolumePair volumes = o.volumes;
+    if (!volumes.volume) {
+        try {
+            volumes = soak_volume(leg, o.stop_requested);
+        } catch (const StoppedInSetUp& stopped) {
+            // no session was started: nothing ran, nothing is judged but that
+            r.stopped_by_signal = stopped.signal;
+            r.device = "no device yet";
+            r.bounds = judge_soak(r, o.deadlines);
+            return r;
+        }
+    }
     // the soak is the runner's offscreen configuration on the real-time clock, every frame drawn
     // and read back; what makes it a soak is its sampler (SoakSampler)
     runner::RunnerConfig config;
@@ -220,6 +242,7 @@ SoakResult run_soak_session(const SoakOptions& o)
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
         runner::Runner runner(std::move(config));
+        r.session_started = true;
         messages = runner.validation_counter();
         r.device = runner.context()->device_name();
         session::Session& session = runner.session();
@@ -357,6 +380,7 @@ std::string soak_json(const SoakResult& r)
         {"bounds", bounds},
         // the signal that ended the run early, or null (it ran its `requested_seconds`)
         {"stopped_by_signal", r.stopped_by_signal ? nlohmann::json(StopSignals::name(r.stopped_by_signal)) : nlohmann::json(nullptr)},
+        {"session_started", r.session_started},
     };
     return j.dump(2) + "\n";
 }

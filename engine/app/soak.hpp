@@ -98,6 +98,7 @@ struct SoakBound {
 
 struct SoakResult {
     double requested_s = 0, seconds = 0, warmup_s = 0;
+    bool session_started = false;  // false: stopped while the volume was made, nothing ran
     std::string device;  // the Vulkan device
     std::uint32_t width = 0, height = 0;
     long long frames = 0;
@@ -168,7 +169,8 @@ struct SoakOptions {
 };
 
 // Runs the soak (a few seconds of set-up, then `seconds` of session, or until stop_requested says
-// otherwise: a request during set-up ends it at its first frame) and judges it. Throws what set-up
+// otherwise: a request while its own volume is made ends it there, before any session, and one
+// later in set-up at its first frame) and judges it. Throws what set-up
 // throws (no Vulkan device, no validation layer).
 SoakResult run_soak_session(const SoakOptions& options);
 

@@ -180,5 +180,24 @@ TEST(Soak, ResidentMemoryIsReadFromProc)
     EXPECT_LT(mib, 1 << 20);
 }
 
+// A stop asked for while the soak makes its volume (tens of seconds under a sanitizer) ends it
+// there: nothing started, the signal kept for the exit status, nothing judged held that was not run.
+TEST(Soak, AStopAskedWhileItsVolumeIsMadeEndsBeforeAnySession)
+{
+    SoakOptions o;
+    o.seconds = 60;
+    int asked = 0;
+    o.stop_requested = [&asked] { return ++asked >= 2 ? 15 : 0; };  // SIGTERM at the second look
+    const SoakResult r = run_soak_session(o);
+    EXPECT_EQ(asked, 2) << "the volume's making looks at the request as it goes and stops at once";
+    EXPECT_EQ(r.stopped_by_signal, 15);
+    EXPECT_FALSE(r.session_started);
+    EXPECT_EQ(r.seconds, 0.0);
+    EXPECT_EQ(r.frames, 0);
+    EXPECT_EQ(r.haptic_ticks, 0);
+    EXPECT_EQ(r.requested_s, 60.0);
+    EXPECT_FALSE(r.bounds.empty());
+}
+
 }  // namespace
 }  // namespace echosim::app

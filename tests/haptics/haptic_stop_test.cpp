@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "device/held_hand.hpp"
 #include "haptics/haptic_loop.hpp"
 #include "physics/physics_fixture.hpp"
 
@@ -14,50 +15,17 @@ namespace echosim::haptics {
 namespace {
 
 // A hand holding the probe 6 mm into the middle of the patch, for ever (world poses, as a scripted
-// trajectory gives them), that remembers the last force it was sent.
-class PressingHand : public device::Device {
-public:
-    PressingHand()
-    {
-        caps_.name = "pressing hand";
-        caps_.driver = "test";
-        caps_.control = device::Control::world;
-        caps_.max_force_N = 20;
-        const Pose p = pressed_along_beam(test::leg().probe_rest_pose(0.5f, 0.5f), 6.0);
-        sample_.control = device::Control::world;
-        sample_.connected = true;
-        sample_.position = {p.position.x, p.position.y, p.position.z};
-        sample_.orientation = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z).normalized();
-    }
-    const device::Capabilities& capabilities() const override { return caps_; }
-    bool read(double, device::DeviceSample& out) noexcept override
-    {
-        ++sample_.sequence;
-        out = sample_;
-        return true;
-    }
-    void write_force(const Eigen::Vector3d& f) noexcept override
-    {
-        last_N_.store(f.norm());
-        writes_.fetch_add(1);
-    }
-    void events(std::vector<device::DeviceEvent>&) override {}
-
-    double last_force_N() const { return last_N_.load(); }
-    long writes() const { return writes_.load(); }
-
-private:
-    device::Capabilities caps_;
-    device::DeviceSample sample_;
-    std::atomic<double> last_N_{-1};
-    std::atomic<long> writes_{0};
-};
+// trajectory gives them), that remembers the last force it was sent (test::HeldHand, held there).
+std::shared_ptr<test::HeldHand> pressing_hand()
+{
+    return std::make_shared<test::HeldHand>(pressed_along_beam(test::leg().probe_rest_pose(0.5f, 0.5f), 6.0), "pressing hand");
+}
 
 TEST(HapticStop, TheLastForceSentIsZeroAfterALockStepRun)
 {
     physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
     const ProbeMapping mapping(test::leg());
-    auto hand = std::make_shared<PressingHand>();
+    auto hand = pressing_hand();
     HapticLoop loop(physics, hand, mapping);
     for (int i = 1; i <= 300; ++i) {
         loop.tick(i * 1e-3);
@@ -72,7 +40,7 @@ TEST(HapticStop, TheLastForceSentIsZeroAfterTheThreadStops)
 {
     physics::PhysicsRunner physics(test::shipped_model(3), physics::PhysicsOptions{});
     const ProbeMapping mapping(test::leg());
-    auto hand = std::make_shared<PressingHand>();
+    auto hand = pressing_hand();
     HapticLoop loop(physics, hand, mapping, HapticOptions{.realtime_priority = false});
     for (int i = 1; i <= 300; ++i) {  // into contact: the physics' contact model is then the pressed one
         loop.tick(i * 1e-3);
