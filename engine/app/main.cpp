@@ -46,7 +46,11 @@ int main(int argc, char** argv)
     // a file-size limit reached (ulimit -f) is a write error naming the file, as a full disk is,
     // not a kill that would leave a half-written temporary file behind
     std::signal(SIGXFSZ, SIG_IGN);
-    CLI::App app{"echosim: real-time echographic simulator with force feedback"};
+    // a log redirected to a file gets each line as it is printed, so a kiosk stopped or killed
+    // keeps every line up to then (stdout to a file is otherwise written in 4 KiB blocks)
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    CLI::App app{"echosim: real-time echographic simulator with force feedback", "echosim"};
+    app.set_version_flag("--version", std::string("echosim ") + ECHOSIM_VERSION);
     app.require_subcommand(1);
 
     RenderArgs render;
@@ -275,6 +279,11 @@ int main(int argc, char** argv)
     records_add_cmd->add_option("report", records_args.report, "the exam's report.json")->required();
     records_source(records_add_cmd);
 
+    // a bare `echosim` is someone finding out what it does: its help, not an error
+    if (argc == 1) {
+        std::fputs(app.help().c_str(), stdout);
+        return kExitOk;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -14,6 +14,18 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "--width")
   message(FATAL_ERROR "echosim render --help: exit ${rc}:\n${out}${err}")
 endif()
 
+# `echosim --version` says the project's version; a bare `echosim` prints its help (every command)
+execute_process(COMMAND ${ECHOSIM} --version RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "^echosim [0-9]+\\.[0-9]+\\.[0-9]+")
+  message(FATAL_ERROR "echosim --version: exit ${rc}:\n${out}${err}")
+endif()
+execute_process(COMMAND ${ECHOSIM} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+foreach(command run exam case records soak render phantom)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "\n  ${command} ")
+    message(FATAL_ERROR "a bare echosim: exit ${rc}, its help does not list ${command}:\n${out}${err}")
+  endif()
+endforeach()
+
 # an output that is not a regular file is refused before any work, and stays what it was
 file(MAKE_DIRECTORY ${WORK})
 foreach(args "render;--gpu;cpu;--out;${WORK}" "reconstruct;--sweep;a.mha;--out;${WORK}/v.txt" "soak;--seconds;10;--json;${WORK}")

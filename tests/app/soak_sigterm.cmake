@@ -31,3 +31,14 @@ if(NOT by STREQUAL "SIGTERM" OR NOT seconds LESS 45 OR NOT requested EQUAL 60)
   message(FATAL_ERROR "soak JSON: stopped_by_signal ${by}, seconds ${seconds} of ${requested}\n${j}")
 endif()
 message(STATUS "soak stopped by SIGTERM in ${took} s (${seconds} s of session)")
+
+# a log redirected to a file keeps every line printed before a kill (stdout is line-buffered): a
+# kiosk killed by its watchdog, SIGKILL here, leaves what it said
+set(log ${JSON}.log)
+file(REMOVE ${log})
+execute_process(COMMAND timeout -s KILL 2 ${ECHOSIM} soak --seconds 60 --gpu cpu --width 320 --height 180
+                OUTPUT_FILE ${log} ERROR_VARIABLE err RESULT_VARIABLE rc)
+file(READ ${log} logged)
+if(NOT (rc EQUAL 137 OR rc STREQUAL "Subprocess killed") OR NOT logged MATCHES "making its volume")
+  message(FATAL_ERROR "echosim soak killed after 2 s (exit ${rc}) left a log without its first line:\n${logged}${err}")
+endif()
