@@ -21,5 +21,10 @@ void main()
     }
     vec3 n = normalize(in_normal);
     if (!gl_FrontFacing) n = -n;
-    out_color = vec4(for_target(shade(frame, n, in_world, in_color, draw.tint.a)), 1.0);
+    float gloss = draw.tint.a;
+    if (draw.material.x > 0.5) {
+        vec4 g = frame.gel_from_world * vec4(in_world, 1.0);
+        gloss *= 1.0 - smoothstep(0.55, 1.0, length(g.xz));
+    }
+    out_color = vec4(for_target(shade(frame, n, in_world, in_color, gloss)), 1.0);
 }

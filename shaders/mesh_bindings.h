@@ -22,12 +22,19 @@ struct FrameUniforms {
     vec4 fill_dir;    // direction the fill light travels (unit), w: intensity
     vec4 sky;         // ambient from the patient's anterior (up), rgb
     vec4 ground;      // ambient from the table side, rgb
+    // world [mm] to the gel's own coordinates: the gel lies on the skin around the probe's face,
+    // an ellipse of radius 1 in this map's x and z (the array's and the elevation's directions)
+    mat4 gel_from_world;
 };
 
-// Per draw, as push constants (80 bytes: within the 128 every device offers).
+// Per draw, as push constants (96 bytes: within the 128 every device offers).
 struct DrawPush {
     mat4 model;  // object to world
     vec4 tint;   // rgb multiplies the vertex colour; a: glossiness in [0, 1] (gel on the skin, the probe's plastic)
+    // x: 1 where the glossiness is the gel's, only within the gel's ellipse around the probe
+    // (FrameUniforms::gel_from_world) and fading out at its rim, so the skin around it is the
+    // matte skin of the rest of the leg; 0: glossy all over (the probe)
+    vec4 material;
 };
 
 #ifdef __cplusplus

@@ -7,7 +7,10 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 
+#include "core/probe_spec.hpp"
 #include "echosim_graphics_shaders.hpp"
 #include "render/graphics_pipeline.hpp"
 #include "gpu/vk_error.hpp"
@@ -122,10 +125,24 @@ VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout
     return create_graphics_pipeline(dev, layout, desc);
 }
 
-void ScenePass::draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
-                     const glm::mat4& model, const glm::vec4& tint)
+namespace {
+
+glm::mat4 gel_from_world(const FrameView& view)
 {
-    const DrawPush push{model, tint};
+    // no probe, no gel: every point maps outside the ellipse
+    if (!view.show_probe) return glm::mat4(glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(10.0f, 0.0f, 10.0f, 1.0f));
+    // the gel spreads 10 mm past the face's ends and 12 mm either side of it (kLinearProbe: a 40 x
+    // 10 mm face): what a probe slid in gel leaves on the skin
+    const glm::vec3 semi_axes(float(kLinearProbe.face_width_mm / 2 + 10.0), 1.0f, float(kLinearProbe.face_thickness_mm / 2 + 12.0));
+    return glm::scale(glm::mat4(1.0f), 1.0f / semi_axes) * glm::inverse(view.probe_to_world);
+}
+
+}  // namespace
+
+void ScenePass::draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
+                     const glm::mat4& model, const glm::vec4& tint, bool gel)
+{
+    const DrawPush push{model, tint, glm::vec4(gel ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f)};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
     vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
     const VkDeviceSize offset = 0;
@@ -165,6 +182,7 @@ void ScenePass::record(const gpu::PassContext& pass)
     frame.fill_dir = glm::vec4(glm::normalize(glm::vec3(0.6f, 0.4f, 0.6f)), 0.25f);
     frame.sky = glm::vec4(0.16f, 0.17f, 0.20f, 1.0f);
     frame.ground = glm::vec4(0.04f, 0.035f, 0.035f, 1.0f);
+    frame.gel_from_world = gel_from_world(view);
     slot.uniforms.write(std::as_bytes(std::span(&frame, 1)));
     // no view set yet: the patch keeps the rest shape it was made with
     if (!view.patch_vertices.empty()) slot.patch_vertices.write(std::as_bytes(view.patch_vertices));
@@ -222,7 +240,7 @@ void ScenePass::record(const gpu::PassContext& pass)
          glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
     // the patch carries ultrasound gel: same skin, a little glossier
     draw(cmd, pixel_lit_, slot.patch_vertices.handle(), patch_indices_.handle(), patch_index_count_, identity,
-         glm::vec4(1.0f, 1.0f, 1.0f, 0.35f));
+         glm::vec4(1.0f, 1.0f, 1.0f, 0.35f), true);
     if (view.show_probe)
         draw(cmd, pixel_lit_, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
              glm::vec4(1.0f, 1.0f, 1.0f, 0.55f));

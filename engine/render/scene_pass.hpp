@@ -91,7 +91,7 @@ private:
     static VkPipeline create_mesh_pipeline(VkDevice device, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
                                            bool lit_per_pixel);
     void draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
-              const glm::mat4& model, const glm::vec4& tint);
+              const glm::mat4& model, const glm::vec4& tint, bool gel = false);
 
     const gpu::Context& ctx_;
     VkFormat color_format_;
