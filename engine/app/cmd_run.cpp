@@ -56,8 +56,10 @@ public:
         const RunInput in = source_->poll(float(dt_s));
         if (in.quit) return false;
         apply_to_window(in, *runner.window());
-        runner.scene().camera.orbit(in.orbit_yaw, in.orbit_pitch);
-        runner.scene().camera.zoom(in.zoom);
+        scene::OrbitCamera& camera = runner.scene().camera;
+        if (in.reset_camera) camera.reset(camera.target);  // still on the probe it follows
+        camera.orbit(in.orbit_yaw, in.orbit_pitch);
+        camera.zoom(in.zoom);
         mouse_->feed(in.probe);
         return true;
     }
@@ -240,6 +242,7 @@ int run_window(const RunArgs& args)
     config.name = "run";
     config.session = session_options;
     config.output = runner::Output::window;
+    config.camera_follows_probe = true;
     config.window = {args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"};
     config.gpu = context_options(args.gpu);
     config.volume = volumes.volume;
@@ -257,7 +260,7 @@ int run_window(const RunArgs& args)
         session::Session& session = runner.session();
         if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
-                    "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; F11 fullscreen, Esc quits\n",
+                    "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
                     runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
 
         std::unique_ptr<InputSource> input;

@@ -15,6 +15,7 @@ struct RunInput {
     // the camera
     float orbit_yaw = 0, orbit_pitch = 0;  // [rad]
     float zoom = 1;                        // distance factor (< 1 closer)
+    bool reset_camera = false;             // the default view again, still on the probe
     // the probe, for the mouse-and-keyboard device (device/mouse_keyboard_device.hpp): a slide
     // over the exam patch (fractions of its extent), a tilt, and a press along the beam
     device::SurfaceMotion probe;

@@ -90,6 +90,7 @@ bool Runner::step()
     session::Session& s = scene_->session;
     s.advance(dt);
     const session::SessionView& view = s.view();  // one physics step for the observers, the scene and the image
+    if (config_.camera_follows_probe) scene_->camera.follow(view.probe.position, float(dt));
 
     StepContext step{steps_, dt, s.time(), view, s};
     for (const auto& o : config_.observers) o->on_step(step);

@@ -133,6 +133,9 @@ struct RunnerConfig {
     // for any output
     std::shared_ptr<const io::Volume> volume, labels;
     std::vector<PassFactory> passes;     // the configuration's own passes (runner/frame.hpp)
+    // the camera keeps the probe in frame (scene::OrbitCamera::follow, each step with the step's
+    // dt): a trainee sliding from the groin to the knee is not left looking at an empty groin
+    bool camera_follows_probe = false;
 
     std::vector<std::shared_ptr<Observer>> observers;
     std::shared_ptr<Input> input;

@@ -32,4 +32,17 @@ void OrbitCamera::orbit(float d_yaw, float d_pitch)
 
 void OrbitCamera::zoom(float factor) { distance = std::clamp(distance * factor, 200.0f, 4000.0f); }
 
+void OrbitCamera::follow(const glm::vec3& point, float dt_s)
+{
+    if (!(dt_s > 0.0f) || !std::isfinite(dt_s)) return;
+    const float share = 1.0f - std::exp(-dt_s / kFollowS);
+    target += share * (point - target);
+}
+
+void OrbitCamera::reset(const glm::vec3& target_now)
+{
+    *this = OrbitCamera{};
+    target = target_now;
+}
+
 }  // namespace echosim::scene

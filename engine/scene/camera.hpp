@@ -24,6 +24,14 @@ struct OrbitCamera {
 
     void orbit(float d_yaw, float d_pitch);  // pitch is kept between just above the table and overhead
     void zoom(float factor);                 // distance kept within [200, 4000] mm
+    // Moves the target towards `point` [mm] over `dt_s`, as a camera operator keeps the probe in
+    // frame: an exponential approach with time constant kFollowS, so a probe slid down the thigh
+    // is followed smoothly and a probe held still is centred; the angle and distance stay the
+    // user's. A dt that is not finite and positive moves nothing.
+    void follow(const glm::vec3& point, float dt_s);
+    static constexpr float kFollowS = 0.35f;  // [s]
+    // The default view again (angle, distance, field of view), looking at `target_now`.
+    void reset(const glm::vec3& target_now);
 };
 
 }  // namespace echosim::scene

@@ -1,6 +1,9 @@
 #include "scene/camera.hpp"
 
+#include <cmath>
+
 #include <glm/geometric.hpp>
+
 #include <gtest/gtest.h>
 
 namespace echosim::scene {
@@ -34,6 +37,38 @@ TEST(OrbitCamera, OrbitAndZoomStayInRange)
     EXPECT_GE(c.distance, 200.0f);
     // the camera never goes below the table plane through the target
     EXPECT_LT(c.eye().y, c.target.y);
+}
+
+// follow: the target approaches the point as 1 - exp(-t / kFollowS), whatever the steps; the
+// angle and distance stay as the user left them; reset gives the default view on a target
+TEST(OrbitCamera, FollowApproachesThePointExponentiallyAndKeepsTheView)
+{
+    OrbitCamera c;
+    c.orbit(0.4f, -0.2f);
+    c.zoom(0.5f);
+    const OrbitCamera before = c;
+    const glm::vec3 start = c.target, point(100.0f, -20.0f, -400.0f);
+    for (int i = 0; i < 60; ++i) c.follow(point, 1.0f / 120);  // 0.5 s in 60 steps
+    const float expected = 1.0f - std::exp(-0.5f / OrbitCamera::kFollowS);
+    const glm::vec3 moved = c.target - start, wanted = expected * (point - start);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(moved[k], wanted[k], 1e-3f * std::abs(point[k] - start[k]) + 1e-3f);
+    EXPECT_EQ(c.yaw, before.yaw);
+    EXPECT_EQ(c.pitch, before.pitch);
+    EXPECT_EQ(c.distance, before.distance);
+    // one step of 0.5 s goes as far as those 60
+    OrbitCamera once = before;
+    once.follow(point, 0.5f);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(once.target[k], c.target[k], 1e-2f);
+    // a bad dt moves nothing
+    const glm::vec3 held = c.target;
+    for (float bad : {0.0f, -1.0f, std::nanf(""), INFINITY}) c.follow(point, bad);
+    EXPECT_EQ(c.target, held);
+
+    c.reset(point);
+    EXPECT_EQ(c.target, point);
+    EXPECT_EQ(c.yaw, OrbitCamera{}.yaw);
+    EXPECT_EQ(c.pitch, OrbitCamera{}.pitch);
+    EXPECT_EQ(c.distance, OrbitCamera{}.distance);
 }
 
 }  // namespace
