@@ -39,9 +39,17 @@ struct SurfacePlacement {
     double fan_rad = 0;   // about the probe's lateral axis (the array): sweeps the image plane [rad]
     double rock_rad = 0;  // about the elevational axis: heel-toe, in the image plane [rad]
     double press_mm = 0;  // along the beam [mm], >= 0
+    double twist_rad = 0; // about the beam, before the tilts: 0 transverse, pi/2 longitudinal [rad]
 
     static constexpr double kMaxTiltRad = 0.5236;  // 30 degrees either way
     static constexpr double kMaxPressMm = 25.0;
+};
+
+// Where a surface placement may go, in the exam patch's (u, v): the patch itself by default; the
+// whole exam limb's course when the session's window follows the probe (u and v then run past
+// [0, 1] along and around the limb in the home patch's own frame: haptics::exam_limb_surface).
+struct SurfaceLimits {
+    double u_lo = 0, u_hi = 1, v_lo = 0, v_hi = 1;
 };
 
 struct DeviceSample {

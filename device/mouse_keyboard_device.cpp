@@ -1,6 +1,7 @@
 #include "device/mouse_keyboard_device.hpp"
 
 #include <algorithm>
+#include <numbers>
 
 namespace echosim::device {
 namespace {
@@ -17,20 +18,22 @@ DeviceSample sample_of(const SurfacePlacement& p, std::uint64_t sequence)
 
 }  // namespace
 
-SurfacePlacement moved(const SurfacePlacement& p, const SurfaceMotion& m)
+SurfacePlacement moved(const SurfacePlacement& p, const SurfaceMotion& m, const SurfaceLimits& limits)
 {
     constexpr double tilt = SurfacePlacement::kMaxTiltRad;
     SurfacePlacement q = p;
-    q.u = std::clamp(p.u + m.du, 0.0, 1.0);
-    q.v = std::clamp(p.v + m.dv, 0.0, 1.0);
+    q.u = std::clamp(p.u + m.du, limits.u_lo, limits.u_hi);
+    q.v = std::clamp(p.v + m.dv, limits.v_lo, limits.v_hi);
+    q.twist_rad = std::clamp(p.twist_rad + m.dtwist_rad, 0.0, std::numbers::pi / 2);
+    if (m.turn) q.twist_rad = q.twist_rad == 0.0 ? std::numbers::pi / 2 : 0.0;
     q.fan_rad = m.level ? 0.0 : std::clamp(p.fan_rad + m.dfan_rad, -tilt, tilt);
     q.rock_rad = m.level ? 0.0 : std::clamp(p.rock_rad + m.drock_rad, -tilt, tilt);
     q.press_mm = std::clamp(m.press_mm.value_or(p.press_mm + m.dpress_mm), 0.0, SurfacePlacement::kMaxPressMm);
     return q;
 }
 
-MouseKeyboardDevice::MouseKeyboardDevice(const SurfacePlacement& start)
-    : placement_(moved(start, {})), handoff_(sample_of(placement_, 0))
+MouseKeyboardDevice::MouseKeyboardDevice(const SurfacePlacement& start, const SurfaceLimits& limits)
+    : limits_(limits), placement_(moved(start, {}, limits)), handoff_(sample_of(placement_, 0))
 {
     caps_.name = "mouse and keyboard";
     caps_.driver = "GLFW window";
@@ -42,7 +45,7 @@ MouseKeyboardDevice::MouseKeyboardDevice(const SurfacePlacement& start)
 
 const SurfacePlacement& MouseKeyboardDevice::feed(const SurfaceMotion& m)
 {
-    placement_ = moved(placement_, m);
+    placement_ = moved(placement_, m, limits_);
     handoff_.write_slot() = sample_of(placement_, ++fed_);
     handoff_.publish();
     return placement_;

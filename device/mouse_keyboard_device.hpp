@@ -19,11 +19,13 @@ struct SurfaceMotion {
     double dpress_mm = 0;                // press in (negative: lift)
     std::optional<double> press_mm;      // an absolute press, which wins over dpress_mm [mm]
     bool level = false;                  // back upright (no tilt)
+    bool turn = false;                   // a quarter turn about the beam: transverse <-> longitudinal
+    double dtwist_rad = 0;               // a twist about the beam, kept within [0, pi/2] [rad]
 };
 
 class MouseKeyboardDevice : public Device {
 public:
-    explicit MouseKeyboardDevice(const SurfacePlacement& start = {});
+    explicit MouseKeyboardDevice(const SurfacePlacement& start = {}, const SurfaceLimits& limits = {});
 
     const Capabilities& capabilities() const override { return caps_; }
     bool read(double t_s, DeviceSample& out) noexcept override;
@@ -37,13 +39,16 @@ public:
 
 private:
     Capabilities caps_;
+    SurfaceLimits limits_;
     SurfacePlacement placement_;              // the window thread's
     std::uint64_t fed_ = 0;                   // the window thread's
     TripleBuffer<DeviceSample> handoff_;      // window thread -> haptic thread
     bool announced_ = false;
 };
 
-// The placement after `m` (clamped as MouseKeyboardDevice::feed clamps).
-SurfacePlacement moved(const SurfacePlacement& p, const SurfaceMotion& m);
+// The placement after `m`, clamped to `limits`, the tilt and the press (as MouseKeyboardDevice::feed
+// clamps); the twist is kept between transverse (0) and longitudinal (pi/2), and a turn sets it to
+// transverse from anything but that, else to longitudinal.
+SurfacePlacement moved(const SurfacePlacement& p, const SurfaceMotion& m, const SurfaceLimits& limits = {});
 
 }  // namespace echosim::device

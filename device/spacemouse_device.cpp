@@ -20,12 +20,12 @@ constexpr const char* kHowTo =
 
 // Until the reader thread finds a device, the haptic thread reads "not connected", resting at the
 // start without a press (no hand on the cap yet).
-DeviceSample resting_sample(const SurfacePlacement& start)
+DeviceSample resting_sample(const SurfacePlacement& start, const SurfaceLimits& limits)
 {
     DeviceSample s;
     s.connected = false;
     s.control = Control::surface;
-    s.surface = moved(start, {});
+    s.surface = moved(start, {}, limits);
     s.surface.press_mm = 0;
     return s;
 }
@@ -50,11 +50,11 @@ SpaceMouseDevice::SpaceMouseDevice(const SpaceMouseMapping& mapping, const Surfa
 }
 
 SpaceMouseDevice::SpaceMouseDevice(std::shared_ptr<HidBackend> backend, const SpaceMouseMapping& mapping, const SurfacePlacement& start)
-    : backend_(std::move(backend)), mapping_(mapping), caps_(spacemouse_family_capabilities()), handoff_(resting_sample(start))
+    : backend_(std::move(backend)), mapping_(mapping), caps_(spacemouse_family_capabilities()), handoff_(resting_sample(start, mapping.limits))
 {
     // named after what is plugged in now, if anything; the reader thread does the opening
     if (const std::vector<FoundDevice> found = find_spacemice(*backend_, false); !found.empty()) caps_ = found.front().capabilities;
-    reader_ = std::thread([this, start] { run(resting_sample(start).surface); });
+    reader_ = std::thread([this, start] { run(resting_sample(start, mapping_.limits).surface); });
 }
 
 SpaceMouseDevice::~SpaceMouseDevice()

@@ -92,6 +92,7 @@ SpaceMouseCommand command_of(const SpaceMouseState& s, const SpaceMouseMapping& 
     c.dv_per_s = deflection(s.tx, m) * k * SpaceMouseMapping::kSlidePerS;
     c.dfan_rad_per_s = deflection(s.rx, m) * k * SpaceMouseMapping::kTiltRadPerS;
     c.drock_rad_per_s = deflection(s.ry, m) * k * SpaceMouseMapping::kTiltRadPerS;
+    c.dtwist_rad_per_s = deflection(s.rz, m) * k * SpaceMouseMapping::kTwistRadPerS;
     // pulling the cap up cannot lift the probe off more than letting go does
     c.press_mm = std::max(deflection(s.tz, m), 0.0) * k * SpaceMouseMapping::kFullPressMm;
     c.level = (s.buttons & 1u) != 0;
@@ -106,9 +107,10 @@ SurfacePlacement advanced(const SurfacePlacement& p, const SpaceMouseState& s, c
     motion.dv = c.dv_per_s * dt_s;
     motion.dfan_rad = c.dfan_rad_per_s * dt_s;
     motion.drock_rad = c.drock_rad_per_s * dt_s;
+    motion.dtwist_rad = c.dtwist_rad_per_s * dt_s;
     motion.press_mm = c.press_mm;
     motion.level = c.level;
-    return moved(p, motion);
+    return moved(p, motion, m.limits);
 }
 
 }  // namespace echosim::device

@@ -62,10 +62,12 @@ struct SpaceMouseMapping {
     double dead_zone = 40;     // |axis| up to this gives nothing: the cap never rests exactly at 0 [counts]
     double sensitivity = 1.0;  // scales every rate and the press
     double full_scale = 350;   // a full deflection [counts]
+    SurfaceLimits limits;      // where the slide may take the probe (the patch unless told)
 
     // at full deflection and sensitivity 1
     static constexpr double kSlidePerS = 0.25;            // across the exam patch [patch fraction / s]
     static constexpr double kTiltRadPerS = 0.5235987755982988;  // 30 degrees / s [rad/s]
+    static constexpr double kTwistRadPerS = 1.5707963267948966; // the cap's twist: a quarter turn in 1 s [rad/s]
     static constexpr double kFullPressMm = 20.0;          // the cap pushed all the way in [mm]
 };
 
@@ -77,10 +79,11 @@ double deflection(std::int16_t counts, const SpaceMouseMapping& m) noexcept;
 struct SpaceMouseCommand {
     double du_per_s = 0, dv_per_s = 0;            // [patch fraction / s]
     double dfan_rad_per_s = 0, drock_rad_per_s = 0;  // [rad/s]
+    double dtwist_rad_per_s = 0;                  // about the beam [rad/s]
     double press_mm = 0;                          // where the push puts the probe [mm], >= 0
     bool level = false;                           // button 0 held
 };
-// ty -> u (along the thigh), tx -> v (around it), rx -> fan, ry -> rock, +tz -> press, rz unused.
+// ty -> u (along the thigh), tx -> v (around it), rx -> fan, ry -> rock, +tz -> press, rz -> twist about the beam.
 SpaceMouseCommand command_of(const SpaceMouseState& s, const SpaceMouseMapping& m) noexcept;
 
 // The placement `dt_s` later, the state held meanwhile (clamped as device::moved clamps).

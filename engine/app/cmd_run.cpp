@@ -26,6 +26,7 @@
 #include "device/spacemouse_device.hpp"
 #include "core/parse_number.hpp"
 #include "gpu/window.hpp"
+#include "haptics/probe_mapping.hpp"
 #include "igtl/server.hpp"
 #include "runner/runner.hpp"
 
@@ -187,12 +188,15 @@ int run_window(const RunArgs& args)
     // the probe moves through the haptic loop: from the window's mouse and keyboard, a SpaceMouse,
     // a force-feedback arm (a Touch through OpenHaptics, or the simulated one), a scripted
     // trajectory, or nothing
-    auto mouse = std::make_shared<device::MouseKeyboardDevice>();
+    // the mouse and keyboard, and a SpaceMouse, slide the probe over the whole course (the patch
+    // of the leg the window starts on is their frame: haptics/probe_mapping.hpp)
+    const device::SurfaceLimits course = haptics::exam_limb_surface(scene::LegModel{});
+    auto mouse = std::make_shared<device::MouseKeyboardDevice>(device::SurfacePlacement{}, course);
     try {
         if (!args.trajectory.empty())
             session_options.device = std::make_shared<device::ScriptedDevice>(device::Trajectory::load(args.trajectory), args.trajectory.string());
         else if (args.device == "spacemouse")
-            session_options.device = std::make_shared<device::SpaceMouseDevice>();
+            session_options.device = std::make_shared<device::SpaceMouseDevice>(device::SpaceMouseMapping{.limits = course});
         else if (args.device == "openhaptics") {
             const device::hd::HdLoad hd = device::hd::load_hd_library();
             if (!hd.api)
@@ -260,7 +264,7 @@ int run_window(const RunArgs& args)
         session::Session& session = runner.session();
         if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
-                    "Q/E and A/D tilt it, R levels it, W/S or Shift+wheel press it in and out; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
+                    "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
                     runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
 
         std::unique_ptr<InputSource> input;

@@ -41,6 +41,7 @@ WindowInput::WindowInput(gpu::Window& window) : window_(window.handle())
         if (key == GLFW_KEY_ESCAPE) k.quit = true;
         if (key == GLFW_KEY_F11 || (key == GLFW_KEY_F && !k.dragging)) k.toggle_fullscreen = true;
         if (key == GLFW_KEY_R) k.level = true;
+        if (key == GLFW_KEY_T) k.turn = true;
         if (key == GLFW_KEY_V || key == GLFW_KEY_HOME) k.reset_camera = true;
     });
 }
@@ -72,13 +73,14 @@ RunInput WindowInput::poll(float dt)
     m.dfan_rad = tilt * double(pressed(window_, GLFW_KEY_E) - pressed(window_, GLFW_KEY_Q));
     m.drock_rad = tilt * double(pressed(window_, GLFW_KEY_D) - pressed(window_, GLFW_KEY_A));
     m.level = k.level;
+    m.turn = k.turn;
     // W/S press the probe in and out at 15 mm/s; Shift+wheel 1 mm a notch
     m.dpress_mm = 15.0 * dt * double(pressed(window_, GLFW_KEY_W) - pressed(window_, GLFW_KEY_S)) + k.press_scroll;
     in.toggle_fullscreen = k.toggle_fullscreen;
     in.reset_camera = k.reset_camera;
     in.quit = k.quit;
     k.drag_x = k.drag_y = k.probe_x = k.probe_y = k.scroll = k.press_scroll = 0;
-    k.toggle_fullscreen = k.quit = k.level = k.reset_camera = false;
+    k.toggle_fullscreen = k.quit = k.level = k.reset_camera = k.turn = false;
     return in;
 }
 

@@ -1,6 +1,7 @@
 // The mouse and keyboard of the simulator's window: left-drag orbits the camera, the wheel zooms,
 // right-drag or the arrow keys slide the probe over the patch, Q/E fan it and A/D rock it (30
-// degrees a second), R sets it upright again, W/S or Shift+wheel press it in and out, V (or Home)
+// degrees a second), R sets it upright again, T turns it a quarter about its beam (transverse to
+// longitudinal and back), W/S or Shift+wheel press it in and out, V (or Home)
 // gives the default view again, F11 (or F) toggles fullscreen, Esc quits. GLFW's callbacks collect what happened between two
 // polls; main thread only (GLFW's rule).
 #pragma once
@@ -32,7 +33,7 @@ public:
         double drag_x = 0, drag_y = 0;    // camera drag [px]
         double probe_x = 0, probe_y = 0;  // probe drag [px]
         double scroll = 0, press_scroll = 0;  // wheel notches: zoom, or with Shift the press
-        bool toggle_fullscreen = false, quit = false, level = false, reset_camera = false;
+        bool toggle_fullscreen = false, quit = false, level = false, reset_camera = false, turn = false;
     };
 
 private:

@@ -1,5 +1,6 @@
 #include "haptics/probe_mapping.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 #include "contact/probe_contact.hpp"
@@ -32,8 +33,9 @@ ProbeFace ProbeMapping::face(const device::DeviceSample& s) const
     case device::Control::surface: {
         const device::SurfacePlacement& p = s.surface;
         ProbeFace f = from_pose(leg_.probe_rest_pose(float(p.u), float(p.v)));
-        f.orientation = f.orientation * Eigen::AngleAxisd(p.fan_rad, Eigen::Vector3d::UnitX()) *
-                        Eigen::AngleAxisd(p.rock_rad, Eigen::Vector3d::UnitZ());
+        // the twist about the beam (probe y) first: the tilts are then about the turned probe's axes
+        f.orientation = f.orientation * Eigen::AngleAxisd(p.twist_rad, Eigen::Vector3d::UnitY()) *
+                        Eigen::AngleAxisd(p.fan_rad, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(p.rock_rad, Eigen::Vector3d::UnitZ());
         f.position += p.press_mm * f.beam();
         return f;
     }
@@ -50,6 +52,15 @@ ProbeFace ProbeMapping::face(const device::DeviceSample& s) const
     f.position = s.position;
     f.orientation = s.orientation;
     return f;
+}
+
+device::SurfaceLimits exam_limb_surface(const scene::LegModel& leg)
+{
+    const scene::ExamPatch& w = leg.patch();
+    const auto u_at = [&](float z_mm) { return double(leg.limb_t_at_z(z_mm) - w.t0) / double(w.t1 - w.t0); };
+    const double turn = 2.0 * std::numbers::pi / double(w.theta1 - w.theta0);  // a full turn in v
+    const double from = u_at(kExamLimbFromZ_mm), to = u_at(kExamLimbToZ_mm);
+    return {std::min(from, to), std::max(from, to), 0.5 - 0.5 * turn, 0.5 + 0.5 * turn};
 }
 
 Eigen::Vector3d ProbeMapping::to_device(const Eigen::Vector3d& force_world, device::Control control) const

@@ -2,6 +2,8 @@
 // thread reads, within the patch, the tilt and the press limits.
 #include "device/mouse_keyboard_device.hpp"
 
+#include <numbers>
+
 #include <gtest/gtest.h>
 
 namespace echosim::device {
@@ -46,6 +48,42 @@ TEST(MouseKeyboardDevice, StaysWithinThePatchTheTiltAndThePress)
     d.feed({.dpress_mm = -10.0});
     d.read(0.0, s);
     EXPECT_EQ(s.surface.press_mm, 0.0);
+}
+
+// Limits wider than the patch (the whole course: haptics::exam_limb_surface) let the slide go past
+// it and still stop at their ends; T turns the probe between transverse and longitudinal, and a
+// twist (a SpaceMouse cap's) stays between the two.
+TEST(MouseKeyboardDevice, SlidesWithinItsLimitsAndTurnsLongitudinal)
+{
+    MouseKeyboardDevice d({}, {-0.5, 6.0, -2.0, 3.0});
+    DeviceSample s;
+    d.feed({.du = 4.0, .dv = -2.0});
+    d.read(0.0, s);
+    EXPECT_DOUBLE_EQ(s.surface.u, 4.5);
+    EXPECT_DOUBLE_EQ(s.surface.v, -1.5);
+    d.feed({.du = 10.0, .dv = 10.0});
+    d.read(0.0, s);
+    EXPECT_EQ(s.surface.u, 6.0);
+    EXPECT_EQ(s.surface.v, 3.0);
+
+    EXPECT_EQ(s.surface.twist_rad, 0.0);
+    d.feed({.turn = true});
+    d.read(0.0, s);
+    EXPECT_DOUBLE_EQ(s.surface.twist_rad, std::numbers::pi / 2);
+    d.feed({.turn = true});
+    d.read(0.0, s);
+    EXPECT_EQ(s.surface.twist_rad, 0.0);
+    d.feed({.dtwist_rad = 0.3});
+    d.feed({.dtwist_rad = 5.0});
+    d.read(0.0, s);
+    EXPECT_DOUBLE_EQ(s.surface.twist_rad, std::numbers::pi / 2);
+    d.feed({.dtwist_rad = -0.5});
+    d.feed({.turn = true});  // from part way: back to transverse
+    d.read(0.0, s);
+    EXPECT_EQ(s.surface.twist_rad, 0.0);
+    d.feed({.dtwist_rad = -1.0});
+    d.read(0.0, s);
+    EXPECT_EQ(s.surface.twist_rad, 0.0);
 }
 
 }  // namespace

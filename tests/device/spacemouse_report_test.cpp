@@ -174,8 +174,9 @@ TEST(SpaceMouseMapping, RatesAtFullDeflection)
     s.ty = -350;  // along it, backwards
     s.rx = 195;   // half way: fan at 15 degrees/s
     s.ry = -350;  // rock at -30 degrees/s
-    s.rz = 350;   // twist: not used
+    s.rz = 350;   // twist: a quarter turn a second
     const SpaceMouseCommand c = command_of(s, m);
+    EXPECT_DOUBLE_EQ(c.dtwist_rad_per_s, 90.0 * 3.14159265358979323846 / 180.0);
     EXPECT_DOUBLE_EQ(c.dv_per_s, 0.25);
     EXPECT_DOUBLE_EQ(c.du_per_s, -0.25);
     EXPECT_DOUBLE_EQ(c.dfan_rad_per_s, 15.0 * 3.14159265358979323846 / 180.0);

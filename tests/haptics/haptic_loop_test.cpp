@@ -6,10 +6,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <thread>
 
 #include <unistd.h>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "device/null_device.hpp"
@@ -287,6 +289,41 @@ TEST(ProbeMapping, PlacesTheProbeOverTheSkinAndMapsAnArmsWorkspace)
     // the tissue pushing the probe back out is the handle pushed up (+y in the device's frame)
     const Eigen::Vector3d up = mapping.to_device(-eigen(centre.axis_y()), device::Control::workspace);
     EXPECT_LT((up - Eigen::Vector3d(0, 1, 0)).norm(), 1e-6);
+}
+
+// Surface devices over the whole course: the limits reach from above the groin crease to below
+// the trifurcation along the limb and once around it (the same skin point at both ends of v), and
+// a quarter twist turns the array from across the limb to along it (a longitudinal view); the
+// twist comes before the fan, which then sweeps across the limb.
+TEST(ProbeMapping, SurfaceDevicesReachTheWholeCourseAndTurnLongitudinal)
+{
+    const scene::LegModel& leg = test::leg();
+    const ProbeMapping mapping(leg);
+    const device::SurfaceLimits limits = exam_limb_surface(leg);
+    EXPECT_NEAR(leg.probe_rest_pose(float(limits.u_lo), 0.5f).position.z, kExamLimbFromZ_mm, 2.0f);
+    EXPECT_NEAR(leg.probe_rest_pose(float(limits.u_hi), 0.5f).position.z, kExamLimbToZ_mm, 2.0f);
+    EXPECT_LT(limits.u_lo, 0.0);
+    EXPECT_GT(limits.u_hi, 1.0);
+    EXPECT_LT(glm::distance(leg.probe_rest_pose(0.5f, float(limits.v_lo)).position, leg.probe_rest_pose(0.5f, float(limits.v_hi)).position),
+              0.5f);
+    EXPECT_GT(glm::distance(leg.probe_rest_pose(0.5f, float(limits.v_lo)).position, leg.probe_rest_pose(0.5f, 0.5f).position), 50.0f)
+        << "the ends of v are the far side of the limb";
+
+    device::DeviceSample s;
+    s.control = device::Control::surface;
+    s.surface.u = 2.0;  // past the patch, down the thigh
+    s.surface.twist_rad = std::numbers::pi / 2;
+    const Pose rest = leg.probe_rest_pose(2.0f, 0.5f);
+    const Eigen::Vector3d along = eigen(leg.probe_rest_pose(2.05f, 0.5f).position - leg.probe_rest_pose(1.95f, 0.5f).position).normalized();
+    ProbeFace f = mapping.face(s);
+    EXPECT_LT((f.position - eigen(rest.position)).norm(), 1e-4);
+    EXPECT_GT(std::abs((f.orientation * Eigen::Vector3d::UnitX()).dot(along)), 0.99) << "the array along the limb";
+    EXPECT_NEAR(f.beam().dot(eigen(rest.axis_y())), 1.0, 1e-6) << "the beam still into the skin";
+    s.surface.fan_rad = 0.2;
+    const ProbeFace fanned = mapping.face(s);
+    // the turned array lies along the rest pose's elevational axis: the fan keeps the beam square to it
+    EXPECT_NEAR(fanned.beam().dot(eigen(rest.axis_z())), 0.0, 1e-5) << "the fan of a turned probe sweeps across the limb";
+    EXPECT_NEAR(std::abs(fanned.beam().dot(eigen(rest.axis_x()))), std::sin(0.2), 0.01);
 }
 
 }  // namespace

@@ -15,7 +15,9 @@
 #include <gtest/gtest.h>
 
 #include "device/held_hand.hpp"
+#include "device/mouse_keyboard_device.hpp"
 #include "device/scripted_device.hpp"
+#include "haptics/probe_mapping.hpp"
 #include "session/simulation_model.hpp"
 
 namespace echosim::session {
@@ -149,6 +151,45 @@ TEST(ExamWindow, SlidingFromTheGroinToTheCanalWithLiftsFollowsTheProbe)
     EXPECT_LE(s.window_moves().moves, 16);
     EXPECT_TRUE(window_covers(s, -300.0f));
     EXPECT_EQ(s.window_moves().abandoned, 0) << "lock-step checks the lift where it decides";
+}
+
+// The window's mouse and keyboard slide the probe over the whole course, not only the home patch
+// (haptics::exam_limb_surface): slid resting on the skin from the groin to the adductor canal,
+// the window follows, and a press there (W) is felt as at home; T turns the probe longitudinal.
+TEST(ExamWindow, TheMouseAndKeyboardReachTheCanalAndPressThere)
+{
+    const scene::LegModel home;
+    auto mouse = std::make_shared<device::MouseKeyboardDevice>(device::SurfacePlacement{}, haptics::exam_limb_surface(home));
+    SessionOptions o = following();
+    o.device = mouse;
+    Session s(o);
+    const double dt = 1.0 / 60;
+    int frames = 0;
+    // the arrow key held: 0.4 of the patch a second (app/window_input.cpp)
+    while (s.view().probe.position.z > -300.0f && frames < 6000) {
+        mouse->feed({.du = 0.4 * dt});
+        s.advance(dt);
+        ++frames;
+    }
+    ASSERT_LE(s.view().probe.position.z, -300.0f) << "the probe stopped at z = " << s.view().probe.position.z;
+    for (int i = 0; i < 30; ++i) s.advance(dt);  // resting: the window's last move lands
+    EXPECT_TRUE(window_covers(s, s.view().probe.position.z));
+    for (int i = 0; i < 30; ++i) {
+        mouse->feed({.dpress_mm = 6.0 / 30});  // W held for half a second
+        s.advance(dt);
+    }
+    for (int i = 0; i < 12; ++i) s.advance(dt);  // held 0.2 s
+    const SessionView& v = s.view();
+    EXPECT_TRUE(v.over_model);
+    EXPECT_TRUE(v.in_contact);
+    EXPECT_NEAR(v.probe_force_N, home_force(6.0), kForceTolerance * home_force(6.0));
+
+    const glm::vec3 across = v.probe.axis_x();
+    mouse->feed({.turn = true});
+    s.advance(dt);
+    const glm::vec3 along = s.view().probe.axis_x();
+    EXPECT_LT(std::abs(glm::dot(across, along)), 0.01f) << "a quarter turn";
+    EXPECT_GT(std::abs(along.z), 0.9f) << "the array along the limb (world z runs down it)";
 }
 
 // Lock-step with the window moving: the same script twice gives the same forces, bit for bit.
