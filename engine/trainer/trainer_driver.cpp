@@ -1,7 +1,6 @@
 #include "trainer/trainer_driver.hpp"
 
 #include "trainer/exam_files.hpp"
-#include "trainer/trainer_screens.hpp"
 
 namespace echosim::trainer {
 
@@ -22,7 +21,7 @@ runner::PassFactory TrainerDriver::pass()
     return {runner::PassPlace::overlay, [this](const runner::PassSetup& setup) {
                 auto p = std::make_unique<ui::UiPass>(setup, options_.ui);
                 p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
-                    act(draw_trainer(*trainer_, view, extent, ui_->fonts(), ui_->scale()));
+                    act(draw_trainer(*trainer_, view, extent, ui_->fonts(), ui_->scale(), screens_));
                 });
                 ui_ = p.get();
                 return p;

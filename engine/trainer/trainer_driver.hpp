@@ -20,6 +20,7 @@
 #include "io/png.hpp"
 #include "runner/runner.hpp"
 #include "trainer/trainer.hpp"
+#include "trainer/trainer_screens.hpp"
 #include "ui/ui_pass.hpp"
 
 namespace echosim::trainer {
@@ -46,6 +47,8 @@ public:
     // The step's input (the runner's Input calls it at its poll).
     void feed(const ui::UiInput& input);
 
+    // The screens' state: where each button was drawn last (a test clicks them there).
+    const ScreenState& screens() const { return screens_; }
     bool quit_requested() const { return quit_; }
     // The case a started lesson needs when the runner holds another's volumes.
     const std::optional<std::string>& case_wanted() const { return case_wanted_; }
@@ -69,6 +72,7 @@ private:
     bool quit_ = false;
     std::optional<std::string> case_wanted_;
     std::function<void(const io::RgbaImage&)> capture_;
+    ScreenState screens_;
     int input_frames_ = 0;  // frames still wanted after an input (ImGui sees a release a frame later)
 };
 

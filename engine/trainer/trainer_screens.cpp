@@ -19,6 +19,13 @@ constexpr ImGuiWindowFlags kFixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_N
 const ImVec4 kGreen(0.30f, 0.80f, 0.40f, 1.0f), kRed(0.95f, 0.30f, 0.25f, 1.0f), kAmber(0.98f, 0.75f, 0.20f, 1.0f),
     kGrey(0.60f, 0.62f, 0.66f, 1.0f), kBlue(0.40f, 0.65f, 1.0f, 1.0f);
 
+// where the item just drawn lies, kept under `name`
+void remember(ScreenState& state, const char* name)
+{
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    state.hotspots[name] = {a.x, a.y, b.x, b.y};
+}
+
 ImU32 u32(const ImVec4& c, float alpha = 1.0f) { return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, c.w * alpha)); }
 
 const char* lesson_label(exam::Protocol p)
@@ -45,7 +52,7 @@ bool big_button(const char* label, const ImVec2& size, const ui::UiFonts& fonts,
 
 // --- start screen
 
-Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale, ScreenState& state)
 {
     Action action = Action::none;
     StartForm& form = t.form();
@@ -64,7 +71,9 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
 
     ImGui::TextUnformatted("Trainee");
     ImGui::SetNextItemWidth(w * 0.5f);
+    if (state.last != Screen::start) ImGui::SetKeyboardFocusHere();  // a trainee walking up types at once
     ImGui::InputTextWithHint("##trainee", "your name, for the records", &form.trainee);
+    remember(state, "trainee");
 
     ImGui::Spacing();
     ImGui::TextUnformatted("Lesson  (F1, F2, F3)");
@@ -99,7 +108,9 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
     ImGui::TextColored(kGrey, "Beginner: guidance arrow, directions and distances. Intermediate: fainter, no distances. Expert: none.");
 
     ImGui::Spacing();
-    if (big_button("Start  (Enter)", ImVec2(w * 0.4f, 56 * scale), fonts, kGreen)) {
+    const bool start = big_button("Start  (Enter)", ImVec2(w * 0.4f, 56 * scale), fonts, kGreen);
+    remember(state, "start");
+    if (start) {
         t.start(view.time_s);
         action = Action::started;
     }
@@ -209,7 +220,7 @@ void force_gauge(double force_N, const exam::ScoringBands& bands, float width, f
     dl->AddText(ImVec2(x_of(bands.excessive_force_N) - 8 * scale, o.y + h + 2 * scale), u32(kRed), buf);
 }
 
-Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale, ScreenState& state)
 {
     Action action = Action::none;
     const exam::Scenario& lesson = t.lesson();
@@ -276,13 +287,17 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
     ImGui::Separator();
     const float bw = (w - 34 * scale) * 0.5f;
     if (big_button("Compressible\n(C)", ImVec2(bw, 64 * scale), fonts, kGreen)) t.call(view.time_s, exam::Call::compressible);
+    remember(state, "compressible");
     ImGui::SameLine();
     if (big_button("Not compr.\n(N)", ImVec2(bw, 64 * scale), fonts, kRed)) t.call(view.time_s, exam::Call::not_compressible);
+    remember(state, "not-compressible");
     if (const std::optional<std::size_t> last = scorer.last_examined()) {
         const exam::Call c = scorer.progress(*last).call;
         ImGui::TextColored(kGrey, "%s: %s", truth[*last].name.c_str(), c == exam::Call::none ? "not called yet" : exam::call_name(c));
     }
-    if (ImGui::Button("Finish the exam (End)", ImVec2(w - 24 * scale, 0))) {
+    const bool finish = ImGui::Button("Finish the exam (End)", ImVec2(w - 24 * scale, 0));
+    remember(state, "finish");
+    if (finish) {
         t.finish();
         action = Action::finished;
     }
@@ -292,7 +307,7 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
 
 // --- report screen
 
-Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, float scale, ScreenState& state)
 {
     const exam::ExamReport& r = t.report();
     const float w = std::min(float(extent.width) * 0.94f, 1100.0f * scale);
@@ -360,21 +375,28 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
         }
         ImGui::EndTable();
     }
-    if (big_button("New lesson  (Enter)", ImVec2(w * 0.3f, 52 * scale), fonts, kBlue)) t.new_lesson();
+    const bool again = big_button("New lesson  (Enter)", ImVec2(w * 0.3f, 52 * scale), fonts, kBlue);
+    remember(state, "new-lesson");
+    if (again) t.new_lesson();
     ImGui::End();
     return Action::none;
 }
 
 }  // namespace
 
-Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale)
+Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale,
+                    ScreenState& state)
 {
-    switch (trainer.screen()) {
-    case Screen::start: return start_screen(trainer, view, extent, fonts, scale);
-    case Screen::exam: return exam_screen(trainer, view, extent, fonts, scale);
-    case Screen::report: return report_screen(trainer, extent, fonts, scale);
+    const Screen shown = trainer.screen();
+    if (shown != state.last) state.hotspots.clear();
+    Action a = Action::none;
+    switch (shown) {
+    case Screen::start: a = start_screen(trainer, view, extent, fonts, scale, state); break;
+    case Screen::exam: a = exam_screen(trainer, view, extent, fonts, scale, state); break;
+    case Screen::report: a = report_screen(trainer, extent, fonts, scale, state); break;
     }
-    return Action::none;
+    state.last = shown;
+    return a;
 }
 
 }  // namespace echosim::trainer

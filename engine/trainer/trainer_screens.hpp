@@ -11,6 +11,9 @@
 //           the report's folder, the trainee's earlier sessions from the records, New lesson.
 #pragma once
 
+#include <map>
+#include <string>
+
 #include <vulkan/vulkan.h>
 
 #include "session/session.hpp"
@@ -19,8 +22,23 @@
 
 namespace echosim::trainer {
 
+// What the screens keep between frames: the screen drawn last (a screen just shown gives the
+// trainee's name field the keyboard), and where each button was drawn [px], by name ("trainee",
+// "start", "compressible", "not-compressible", "finish", "new-lesson"), for a test's script to click
+// it as a trainee would.
+struct ScreenState {
+    Screen last = Screen::report;
+    struct Rect {
+        float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        float cx() const { return 0.5f * (x0 + x1); }
+        float cy() const { return 0.5f * (y0 + y1); }
+    };
+    std::map<std::string, Rect> hotspots;
+};
+
 // Draws the trainer's current screen into a frame of `extent` (ImGui's context current); returns
 // what a clicked button asks of the driver.
-Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale);
+Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale,
+                    ScreenState& state);
 
 }  // namespace echosim::trainer
