@@ -61,6 +61,7 @@ public:
         if (in.reset_camera) camera.reset(camera.target);  // still on the probe it follows
         camera.orbit(in.orbit_yaw, in.orbit_pitch);
         camera.zoom(in.zoom);
+        runner::apply(*runner.frame(), in.scanner);
         mouse_->feed(in.probe);
         return true;
     }
@@ -78,7 +79,11 @@ class RunConsole final : public runner::Observer {
 public:
     RunConsole(int frames, const StopSignals& stop) : frames_(frames), stop_(stop) {}
 
-    void on_attach(runner::Runner& runner) override { window_ = runner.window(); }
+    void on_attach(runner::Runner& runner) override
+    {
+        window_ = runner.window();
+        frame_ = runner.frame();
+    }
     bool should_stop() override
     {
         return window_->should_close() || (frames_ != 0 && presented_ >= frames_) || stop_.requested() != 0;
@@ -96,9 +101,10 @@ public:
         }
         const session::SessionView& state = step.view;
         if (step.session.time() - last_title_ > 0.2) {
-            char title[160];
+            char title[224];
             if (device_status_.empty())
-                std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N", state.press_mm, state.probe_force_N);
+                std::snprintf(title, sizeof title, "echosim - probe %.1f mm in, %.1f N - %s", state.press_mm, state.probe_force_N,
+                              runner::scanner_status(*frame_).c_str());
             else
                 std::snprintf(title, sizeof title, "echosim - %s: looking for it - probe %.1f N", device_status_.c_str(), state.probe_force_N);
             glfwSetWindowTitle(window_->handle(), title);
@@ -121,6 +127,7 @@ private:
     int frames_;  // stop after this many presented frames (0: until the window closes)
     const StopSignals& stop_;
     gpu::Window* window_ = nullptr;
+    runner::SimulatorFrame* frame_ = nullptr;
     std::vector<device::DeviceEvent> events_;
     std::string device_status_;  // what the title says of the device while it is away
     double last_title_ = -1;
@@ -264,7 +271,8 @@ int run_window(const RunArgs& args)
         session::Session& session = runner.session();
         if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
         std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
-                    "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
+                    "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; + and - gain, "
+                    "Page Up and Page Down focus, Space freezes the image; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
                     runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
 
         std::unique_ptr<InputSource> input;

@@ -8,6 +8,7 @@
 #include <glm/vec2.hpp>
 
 #include "device/mouse_keyboard_device.hpp"
+#include "runner/scanner_controls.hpp"
 
 namespace echosim::app {
 
@@ -16,6 +17,7 @@ struct RunInput {
     float orbit_yaw = 0, orbit_pitch = 0;  // [rad]
     float zoom = 1;                        // distance factor (< 1 closer)
     bool reset_camera = false;             // the default view again, still on the probe
+    runner::ScannerInput scanner;          // gain, focus, freeze
     // the probe, for the mouse-and-keyboard device (device/mouse_keyboard_device.hpp): a slide
     // over the exam patch (fractions of its extent), a tilt, and a press along the beam
     device::SurfaceMotion probe;

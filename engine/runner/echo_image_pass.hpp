@@ -41,12 +41,19 @@ public:
         sink_ = std::move(sink);
     }
 
-    // The input of the frames recorded from now on (copied: the session's changes every frame).
+    // The input of the frames recorded from now on (copied: the session's changes every frame);
+    // ignored while frozen.
     void set_frame(const echo::EchoFrame& frame)
     {
+        if (frozen_) return;
         frame_ = frame;
         if (sink_) wall_clock_s_ = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
     }
+
+    // Frozen, the frames show the input set last before (a scanner's freeze: the trainee studies
+    // the image, measures on it, while the probe and the tissue go on).
+    void set_frozen(bool frozen) { frozen_ = frozen; }
+    bool frozen() const { return frozen_; }
 
     const char* name() const override { return "echographic image"; }
     gpu::TargetUse target_use() const override { return gpu::TargetUse::none(); }
@@ -76,6 +83,7 @@ private:
     echo::EchoFrame frame_;
     ReadbackSink sink_;
     double wall_clock_s_ = 0;
+    bool frozen_ = false;
     std::array<Drawn, gpu::kFramesInFlight> drawn_;
 };
 

@@ -64,7 +64,9 @@ void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& 
     const render::TargetRect panel = echo_panel_rect(extent, scene.session.image_plane());
     panel_.set_rect(panel);
     scene_pass_.set_area({0.0f, 0.0f, panel.x, 1.0f});
-    cue_pass_.set(image_cue(*state.echo, scene.session.image_plane(), echo_image_.volume_grid()), panel, extent);
+    // frozen, the image and its cue stay those of the frame it was frozen on
+    const ImageCue cue = echo_pass_.frozen() ? cue_pass_.cue() : image_cue(*state.echo, scene.session.image_plane(), echo_image_.volume_grid());
+    cue_pass_.set(cue, panel, extent);
     for (SessionPass* p : following_) p->set(state, extent);
 }
 

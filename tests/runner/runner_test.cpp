@@ -23,6 +23,7 @@
 #include "runner/image_cue.hpp"
 #include "runner/recorders.hpp"
 #include "runner/runner.hpp"
+#include "runner/scanner_controls.hpp"
 #include "test_gpu.hpp"
 
 namespace echosim {
@@ -333,6 +334,82 @@ TEST(Runner, ThePanelSaysNoContactOffTheSkinAndNothingWhilePressing)
         EXPECT_EQ(r.frame()->cue(), runner::ImageCue::outside_region);
         EXPECT_GT(amber_pixels(keep->last, panel), 200);
         if (keep_dir) io::write_png(std::filesystem::path(keep_dir) / "h6_outside.png", keep->last);
+    }
+    EXPECT_EQ(messages->load(), 0u);
+}
+
+// The scanner's knobs: gain and focus step and stop at their ends; a focus is kept inside the image.
+TEST(ScannerControls, GainAndFocusStepWithinTheirRanges)
+{
+    echo::ScannerSettings s;
+    s.gain_db = 0;
+    s.focus_mm = 20;
+    echo::ScannerSettings t = runner::adjusted(s, {.gain_steps = 2, .focus_steps = -1}, 50.0);
+    EXPECT_DOUBLE_EQ(t.gain_db, 2 * runner::kGainStepDb);
+    EXPECT_DOUBLE_EQ(t.focus_mm, 20 - runner::kFocusStepMm);
+    EXPECT_EQ(t.dynamic_range_db, s.dynamic_range_db);
+    t = runner::adjusted(s, {.gain_steps = 100, .focus_steps = 100}, 50.0);
+    EXPECT_DOUBLE_EQ(t.gain_db, runner::kMaxGainDb);
+    EXPECT_DOUBLE_EQ(t.focus_mm, 50.0 - runner::kFocusMarginMm);
+    t = runner::adjusted(s, {.gain_steps = -100, .focus_steps = -100}, 50.0);
+    EXPECT_DOUBLE_EQ(t.gain_db, -runner::kMaxGainDb);
+    EXPECT_DOUBLE_EQ(t.focus_mm, runner::kFocusMarginMm);
+}
+
+// Freeze: the panel keeps the frozen image while the probe presses on (the scene shows the press),
+// and follows the probe again once unfrozen; gain changes what the panel shows.
+TEST(Runner, AFrozenImageStaysWhileTheProbeMovesOn)
+{
+    const TestVolumes v = small_volume();
+    const scene::LegModel leg;
+    runner::ExamOptions o = small_exam(v);
+    o.extent = {480, 270};
+    o.duration_s = 2.0;
+    auto place = std::make_shared<PlaceProbe>();
+    place->rest = leg.probe_rest_pose(0.5f, 0.5f);
+    place->press_mm = 2.0;
+    o.input = place;
+    auto keep = std::make_shared<KeepFrame>();
+    o.observers.push_back(keep);
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        runner::Runner r(runner::exam_config(std::move(o)));
+        messages = r.validation_counter();
+        const render::TargetRect panel_rect = runner::echo_panel_rect({480, 270}, r.session().image_plane());
+        const VkRect2D panel = render::target_pixels(panel_rect, {480, 270});
+        const auto panel_of = [&](const io::RgbaImage& f) {
+            std::vector<std::uint8_t> bytes;
+            for (std::uint32_t y = std::uint32_t(panel.offset.y); y < std::uint32_t(panel.offset.y) + panel.extent.height; ++y)
+                for (std::uint32_t x = std::uint32_t(panel.offset.x); x < std::uint32_t(panel.offset.x) + panel.extent.width; ++x)
+                    bytes.insert(bytes.end(), f.at(x, y), f.at(x, y) + 3);
+            return bytes;
+        };
+        const auto scene_of = [&](const io::RgbaImage& f) {
+            std::vector<std::uint8_t> bytes;
+            for (std::uint32_t y = 0; y < f.height; ++y) bytes.insert(bytes.end(), f.at(0, y), f.at(0, y) + 4 * std::size_t(panel.offset.x));
+            return bytes;
+        };
+        for (int i = 0; i < 10; ++i) ASSERT_TRUE(r.step());
+        runner::apply(*r.frame(), {.toggle_freeze = true});
+        EXPECT_NE(runner::scanner_status(*r.frame()).find("FROZEN"), std::string::npos);
+        ASSERT_TRUE(r.step());
+        const io::RgbaImage frozen = keep->last;
+        place->press_mm = 10.0;  // pressed 8 mm further
+        for (int i = 0; i < 25; ++i) ASSERT_TRUE(r.step());
+        EXPECT_EQ(panel_of(keep->last), panel_of(frozen)) << "the frozen image stays";
+        EXPECT_NE(scene_of(keep->last), scene_of(frozen)) << "the scene shows the press going on";
+        runner::apply(*r.frame(), {.toggle_freeze = true});
+        ASSERT_TRUE(r.step());
+        ASSERT_TRUE(r.step());  // the slot drawn before the unfreeze is shown no more
+        const io::RgbaImage live = keep->last;
+        EXPECT_NE(panel_of(live), panel_of(frozen)) << "unfrozen, the image follows the press";
+        runner::apply(*r.frame(), {.gain_steps = 5});
+        ASSERT_TRUE(r.step());
+        ASSERT_TRUE(r.step());
+        const std::vector<std::uint8_t> brighter = panel_of(keep->last), before = panel_of(live);
+        long sum_brighter = 0, sum_before = 0;
+        for (std::size_t i = 0; i < before.size(); ++i) sum_brighter += brighter[i], sum_before += before[i];
+        EXPECT_GT(sum_brighter, sum_before) << "10 dB more gain: a brighter image";
     }
     EXPECT_EQ(messages->load(), 0u);
 }

@@ -1,0 +1,32 @@
+#include "runner/scanner_controls.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace echosim::runner {
+
+echo::ScannerSettings adjusted(const echo::ScannerSettings& s, const ScannerInput& in, double depth_mm)
+{
+    echo::ScannerSettings out = s;
+    out.gain_db = std::clamp(s.gain_db + kGainStepDb * in.gain_steps, -kMaxGainDb, kMaxGainDb);
+    const double shallowest = std::min(kFocusMarginMm, depth_mm / 2), deepest = std::max(depth_mm - kFocusMarginMm, depth_mm / 2);
+    out.focus_mm = std::clamp(s.focus_mm + kFocusStepMm * in.focus_steps, shallowest, deepest);
+    return out;
+}
+
+void apply(SimulatorFrame& frame, const ScannerInput& in)
+{
+    echo::ScannerSettings& s = frame.echo_image().scanner();
+    s = adjusted(s, in, frame.echo_image().plane().depth_mm);
+    if (in.toggle_freeze) frame.echo_pass().set_frozen(!frame.echo_pass().frozen());
+}
+
+std::string scanner_status(SimulatorFrame& frame)
+{
+    const echo::ScannerSettings& s = frame.echo_image().scanner();
+    char text[96];
+    std::snprintf(text, sizeof text, "gain %+.0f dB, focus %.1f mm%s", s.gain_db, s.focus_mm, frame.echo_pass().frozen() ? ", FROZEN" : "");
+    return text;
+}
+
+}  // namespace echosim::runner

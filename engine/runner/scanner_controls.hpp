@@ -1,0 +1,34 @@
+// The scanner's own controls in a running simulator (issue 32, "the scanner a trainee expects"):
+// gain and transmit focus, as a scanner's knobs change them, and freeze, which holds the image
+// while the trainee looks at it (the probe and the tissue go on). Input sources (the window's keys,
+// a test's script) say what was asked for as a ScannerInput; the runner's frame holds the settings
+// (image::EchoImageGpu::scanner) and the frozen state (EchoImagePass).
+#pragma once
+
+#include <string>
+
+#include "echo/echo_frame.hpp"
+#include "runner/frame.hpp"
+
+namespace echosim::runner {
+
+// What was asked for since the last poll.
+struct ScannerInput {
+    int gain_steps = 0;   // + brighter, - darker, kGainStepDb each
+    int focus_steps = 0;  // + deeper, - shallower, kFocusStepMm each
+    bool toggle_freeze = false;
+};
+
+inline constexpr double kGainStepDb = 2.0, kMaxGainDb = 20.0;  // within +-20 dB
+inline constexpr double kFocusStepMm = 2.5, kFocusMarginMm = 5.0;  // within 5 mm of the top and the bottom
+
+// The settings after `in` on an image `depth_mm` deep (gain and focus kept within their ranges).
+echo::ScannerSettings adjusted(const echo::ScannerSettings& s, const ScannerInput& in, double depth_mm);
+
+// Applies `in` to the frame's image: its settings, and freeze toggled.
+void apply(SimulatorFrame& frame, const ScannerInput& in);
+
+// "gain +4 dB, focus 22.5 mm" and ", FROZEN" when it is: for a title bar or a status line.
+std::string scanner_status(SimulatorFrame& frame);
+
+}  // namespace echosim::runner
