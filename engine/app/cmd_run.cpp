@@ -15,6 +15,7 @@
 #include "app/gpu_args.hpp"
 #include "app/live_link.hpp"
 #include "app/stop_signals.hpp"
+#include "app/trainer_window.hpp"
 #include "app/terminal_progress.hpp"
 #include "app/volume_source.hpp"
 #include "app/window_input.hpp"
@@ -47,14 +48,15 @@ void apply_to_window(const RunInput& in, gpu::Window& window)
 // mouse-and-keyboard device (read only when it is the session's device).
 class RunControls final : public runner::Input {
 public:
-    RunControls(std::unique_ptr<InputSource> source, std::shared_ptr<device::MouseKeyboardDevice> mouse)
-        : source_(std::move(source)), mouse_(std::move(mouse))
+    RunControls(std::unique_ptr<InputSource> source, std::shared_ptr<device::MouseKeyboardDevice> mouse, TrainerWindow* trainer)
+        : source_(std::move(source)), mouse_(std::move(mouse)), trainer_(trainer)
     {
     }
     bool poll(runner::Runner& runner, double dt_s) override
     {
         glfwPollEvents();
-        const RunInput in = source_->poll(float(dt_s));
+        RunInput in = source_->poll(float(dt_s));
+        if (trainer_) trainer_->filter(runner, in);  // the trainer's UI first: a name typed moves no probe
         if (in.quit) return false;
         apply_to_window(in, *runner.window());
         scene::OrbitCamera& camera = runner.scene().camera;
@@ -69,6 +71,7 @@ public:
 private:
     std::unique_ptr<InputSource> source_;
     std::shared_ptr<device::MouseKeyboardDevice> mouse_;
+    TrainerWindow* trainer_;
 };
 
 // What the run says and shows beside the frame: the device's events (and, while it is away, the
@@ -220,16 +223,14 @@ int run_window(const RunArgs& args)
         return kExitBadInput;
     }
     VolumePair volumes;
+    std::unique_ptr<TrainerWindow> trainer;
     TerminalProgress progress(std::string("echosim run: ") + kCaseVolumeProgress);
     try {
-        session_options.patient.which = echo::parse_case(args.case_name);
         if (args.volume.empty() && !args.labels.empty())
             throw std::invalid_argument("--labels " + args.labels.string() + ": give the --volume they label");
-        if (args.volume.empty()) {
-            volumes = case_volume(session_options.patient.which, progress);
-        } else {
-            volumes = user_volume(args.volume, args.labels);
-        }
+        // the trainer (app/trainer_window.hpp): the chosen case's exam volume, or the user's own
+        trainer = std::make_unique<TrainerWindow>(args);
+        volumes = trainer->load_volumes(context_options(args.gpu), progress);
     } catch (const std::exception& e) {
         progress.finish();
         std::fprintf(stderr, "echosim run: %s\n", e.what());
@@ -249,52 +250,74 @@ int run_window(const RunArgs& args)
     // draws the latest surface the physics published), the frame (the scene, and beside it the
     // echographic image made on the GPU every frame from the same physics step); what the run adds
     // is its input (RunControls), its console, title and limits (RunConsole) and the live link (LiveLink).
-    runner::RunnerConfig config;
-    config.name = "run";
-    config.session = session_options;
-    config.output = runner::Output::window;
-    config.camera_follows_probe = true;
-    config.window = {args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"};
-    config.gpu = context_options(args.gpu);
-    config.volume = volumes.volume;
-    config.labels = volumes.labels;
     auto console = std::make_shared<RunConsole>(args.frames, stop);
-    config.observers.push_back(console);
-    // with the link: every frame's image read back (a slot behind, no wait) and published with the
-    // pose it was drawn at (app/live_link.hpp)
-    if (link) config.observers.push_back(std::make_shared<LiveLink>(*link, "echosim run: "));
-    std::uint32_t swapchains = 0;
-    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
-    {
-        runner::Runner runner(std::move(config));
-        messages = runner.validation_counter();
-        session::Session& session = runner.session();
-        if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
-        std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
-                    "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; + and - gain, "
-                    "Page Up and Page Down focus, Space freezes the image; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
-                    runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
+    const std::shared_ptr<LiveLink> live = link ? std::make_shared<LiveLink>(*link, "echosim run: ") : nullptr;
+    std::uint32_t swapchains = 0, validation = 0;
+    // one runner a case: a lesson started on another case ends it, and the run goes on with a
+    // runner holding that case's volumes (app/trainer_window.hpp)
+    for (bool again = true; again;) {
+        runner::RunnerConfig config;
+        config.name = "run";
+        config.session = session_options;
+        config.output = runner::Output::window;
+        config.camera_follows_probe = true;
+        config.window = {args.width, args.height, args.fullscreen, "echosim - compression ultrasound of the thigh"};
+        config.gpu = context_options(args.gpu);
+        config.volume = volumes.volume;
+        config.labels = volumes.labels;
+        config.observers.push_back(console);
+        // with the link: every frame's image read back (a slot behind, no wait) and published with the
+        // pose it was drawn at (app/live_link.hpp)
+        if (live) config.observers.push_back(live);
+        trainer->configure(config);
+        std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+        {
+            runner::Runner runner(std::move(config));
+            messages = runner.validation_counter();
+            trainer->attach(runner);
+            session::Session& session = runner.session();
+            if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
+            std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
+                        "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; + and - gain, "
+                        "Page Up and Page Down focus, Space freezes the image; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
+                        runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
 
-        std::unique_ptr<InputSource> input;
-        if (args.exercise)
-            input = std::make_unique<ExerciseScript>(glm::ivec2(args.width, args.height));
-        else
-            input = std::make_unique<WindowInput>(*runner.window());
-        runner.set_input(std::make_shared<RunControls>(std::move(input), mouse));
-        runner.run();  // ends stopping the session: the haptic loop first, which sends the device a zero force
+            std::unique_ptr<InputSource> input;
+            if (args.exercise)
+                input = std::make_unique<ExerciseScript>(glm::ivec2(args.width, args.height));
+            else
+                input = std::make_unique<WindowInput>(*runner.window());
+            runner.set_input(std::make_shared<RunControls>(std::move(input), mouse, trainer.get()));
+            runner.run();  // ends stopping the session: the haptic loop first, which sends the device a zero force
 
-        swapchains = runner.window_output()->swapchain_generation();
-        std::printf("echosim run: the runner stepped %lld times\n", static_cast<long long>(runner.steps()));
-        if (const int signal = stop.requested()) std::printf("echosim run: stopped by %s\n", StopSignals::name(signal));
-        const physics::RunnerStats st = session.physics_stats();
-        std::printf("echosim run: physics stepped %lld times (%lld late, %lld asleep), last probe force %.2f N\n",
-                    static_cast<long long>(st.steps), static_cast<long long>(st.overruns), static_cast<long long>(st.asleep),
-                    session.view().probe_force_N);
-        if (haptics::HapticLoop* loop = session.haptic_loop()) {
-            const haptics::PeriodStats h = loop->stats();
-            std::printf("echosim run: haptic loop ticked %lld times; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines\n",
-                        static_cast<long long>(loop->ticks()), h.error_quantile_ms(0.5), h.error_quantile_ms(0.99), h.max_error_ms,
-                        static_cast<long long>(h.missed_deadlines));
+            swapchains += runner.window_output()->swapchain_generation();
+            std::printf("echosim run: the runner stepped %lld times\n", static_cast<long long>(runner.steps()));
+            if (const int signal = stop.requested()) std::printf("echosim run: stopped by %s\n", StopSignals::name(signal));
+            const physics::RunnerStats st = session.physics_stats();
+            std::printf("echosim run: physics stepped %lld times (%lld late, %lld asleep), last probe force %.2f N\n",
+                        static_cast<long long>(st.steps), static_cast<long long>(st.overruns), static_cast<long long>(st.asleep),
+                        session.view().probe_force_N);
+            if (haptics::HapticLoop* loop = session.haptic_loop()) {
+                const haptics::PeriodStats h = loop->stats();
+                std::printf("echosim run: haptic loop ticked %lld times; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; %lld missed deadlines\n",
+                            static_cast<long long>(loop->ticks()), h.error_quantile_ms(0.5), h.error_quantile_ms(0.99), h.max_error_ms,
+                            static_cast<long long>(h.missed_deadlines));
+            }
+        }
+        validation += messages->load();  // read with the runner gone: its leaks count too
+        trainer->detach();
+        again = trainer->again() && stop.requested() == 0;
+        if (again) {
+            TerminalProgress making(std::string("echosim run: making the case's volume (once; it is cached): "));
+            try {
+                volumes = trainer->load_volumes(context_options(args.gpu), making);
+            } catch (const std::exception& e) {
+                making.finish();
+                std::fprintf(stderr, "echosim run: %s\n", e.what());
+                return kExitFailure;
+            }
+            making.finish();
+            std::printf("echosim run: the lesson's case: %s\n", volumes.description.c_str());
         }
     }
     const int presented = console->presented();
@@ -310,7 +333,7 @@ int run_window(const RunArgs& args)
                     static_cast<long long>(st.frames_sent), static_cast<long long>(st.clients_served), st.clients_served == 1 ? "" : "s",
                     static_cast<long long>(st.frames_published));
     }
-    const std::uint32_t n = messages->load();
+    const std::uint32_t n = validation;
     if (n > 0) std::fprintf(stderr, "echosim run: Vulkan validation reported %u message(s)\n", n);
     if (const int signal = stop.requested()) return StopSignals::exit_code(signal);
     return n > 0 ? kExitValidation : kExitOk;

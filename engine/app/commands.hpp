@@ -91,8 +91,15 @@ struct RunArgs {
     // --igtl-bind ADDRESS: where the link listens (an IPv4 or IPv6 literal, validated by
     // run_window); empty: the loopback interface, this machine alone (igtl/server.hpp)
     std::string igtl_bind;
+    // the trainer (app/trainer_window.hpp): --case is a shipped case's id (or random); the kiosk,
+    // its idle timeout [s], the trainee records (empty: the user's default), coarse case volumes
+    bool kiosk = false;
+    double idle_timeout_s = 120;
+    std::filesystem::path records;
+    bool coarse = false;
 };
 int run_window(const RunArgs& args);
+std::string run_keys_help();  // every key of `echosim run`, for its --help (app/trainer_window.cpp)
 
 struct MeasureArgs {
     std::filesystem::path out;

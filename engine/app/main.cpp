@@ -78,7 +78,7 @@ int main(int argc, char** argv)
     run_cmd->add_option("--volume", run.volume, "echographic volume (NRRD or MetaImage; not 8-bit: min..max mapped onto 0..255); default: the case's, made once and cached");
     run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
     run_cmd->add_option("--model", run.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
-    run_cmd->add_option("--case", run.case_name, "healthy, dvt-acute or dvt-chronic");
+    run_cmd->add_option("--case", run.case_name, "the case the start screen chooses: a shipped case's id (echosim case list), or random");
     run_cmd->add_option("--device", run.device,
                         "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), openhaptics (a 3D Systems "
                         "Touch/Phantom arm, force feedback), simulated-arm (a simulated hand on a simulated arm, force feedback), null")
@@ -95,6 +95,14 @@ int main(int argc, char** argv)
                         "with --igtl: listen on this address, an IPv4 or IPv6 literal (0.0.0.0 or :: for every interface, so 3D Slicer on "
                         "another machine can connect; the link has no authentication); default: the loopback interface, this machine alone")
         ->type_name("ADDRESS");
+    run_cmd->add_flag("--kiosk", run.kiosk,
+                      "the skills lab's kiosk: fullscreen at the display's resolution (up to 3840x2160), the UI scaled to be read "
+                      "standing, Esc does not quit (Ctrl+Alt+Q does), an idle lesson scored, stored and the start screen shown again");
+    run_cmd->add_option("--idle-timeout", run.idle_timeout_s, "with --kiosk: seconds without input before an idle lesson is stored (0: never)")
+        ->check(finite_range(0.0, 86400.0));
+    run_cmd->add_option("--records", run.records, "the trainee records database (SQLite; default: the user's data folder)");
+    run_cmd->add_flag("--coarse", run.coarse, "the cases' volumes at 0.6 mm (seconds to make: tests, slow machines)");
+    run_cmd->footer(echosim::app::run_keys_help());
     add_gpu_options(run_cmd, run.gpu);
 
     MeasureArgs measure;

@@ -19,7 +19,9 @@ TrainerDriver::TrainerDriver(std::shared_ptr<Trainer> trainer, DriverOptions opt
 runner::PassFactory TrainerDriver::pass()
 {
     return {runner::PassPlace::overlay, [this](const runner::PassSetup& setup) {
-                auto p = std::make_unique<ui::UiPass>(setup, options_.ui);
+                ui::UiOptions o = options_.ui;
+                if (options_.ui_scale) o.scale = options_.ui_scale();
+                auto p = std::make_unique<ui::UiPass>(setup, o);
                 p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
                     act(draw_trainer(*trainer_, view, extent, ui_->fonts(), ui_->scale(), screens_));
                 });
@@ -42,7 +44,7 @@ void TrainerDriver::on_attach(runner::Runner& runner)
 void TrainerDriver::act(Action a)
 {
     if (a == Action::quit) quit_ = true;
-    if (a == Action::started && trainer_->lesson().id != options_.loaded_case) case_wanted_ = trainer_->lesson().id;
+    if (a == Action::started && !any_case_ && trainer_->lesson().id != options_.loaded_case) case_wanted_ = trainer_->lesson().id;
 }
 
 void TrainerDriver::on_step(runner::StepContext& step)

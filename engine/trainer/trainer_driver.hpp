@@ -27,6 +27,7 @@ namespace echosim::trainer {
 
 struct DriverOptions {
     ui::UiOptions ui;
+    std::function<float()> ui_scale;  // when set: the UI's scale, asked when the pass is made (the window open)
     // with Drawing::on_request (a lock-step run), a frame every this many steps besides the steps
     // with input (0: only those); with Drawing::every_step every step draws anyway
     int frame_every_steps = 6;
@@ -54,6 +55,8 @@ public:
     const std::optional<std::string>& case_wanted() const { return case_wanted_; }
     // The next frame read back (offscreen) into `sink`, once.
     void capture(std::function<void(const io::RgbaImage&)> sink) { capture_ = std::move(sink); }
+    // Every case's lesson runs on the volumes held (a user's own volume): none asks for a runner anew.
+    void accept_any_case() { any_case_ = true; }
 
     void on_attach(runner::Runner& runner) override;
     bool should_stop() override { return quit_ || case_wanted_.has_value(); }
@@ -72,6 +75,7 @@ private:
     bool quit_ = false;
     std::optional<std::string> case_wanted_;
     std::function<void(const io::RgbaImage&)> capture_;
+    bool any_case_ = false;
     ScreenState screens_;
     int input_frames_ = 0;  // frames still wanted after an input (ImGui sees a release a frame later)
 };

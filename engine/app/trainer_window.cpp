@@ -1,0 +1,238 @@
+#include "app/trainer_window.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <GLFW/glfw3.h>
+
+#include "app/exam_volume.hpp"
+#include "app/terminal_progress.hpp"
+#include "exam/records.hpp"
+#include "exam/scenario.hpp"
+
+namespace echosim::app {
+namespace {
+
+// the UI's input of the one window (main thread only; GLFW's character callback has no other way
+// to it: the window's user pointer is WindowInput's)
+UiWindowInput* g_char_target = nullptr;
+
+// our keys as GLFW's (letters, digits and space are the same codes)
+int glfw_key(ui::Key k)
+{
+    using ui::Key;
+    switch (k) {
+    case Key::tab: return GLFW_KEY_TAB;
+    case Key::enter: return GLFW_KEY_ENTER;
+    case Key::escape: return GLFW_KEY_ESCAPE;
+    case Key::backspace: return GLFW_KEY_BACKSPACE;
+    case Key::del: return GLFW_KEY_DELETE;
+    case Key::left: return GLFW_KEY_LEFT;
+    case Key::right: return GLFW_KEY_RIGHT;
+    case Key::up: return GLFW_KEY_UP;
+    case Key::down: return GLFW_KEY_DOWN;
+    case Key::home: return GLFW_KEY_HOME;
+    case Key::end: return GLFW_KEY_END;
+    case Key::page_up: return GLFW_KEY_PAGE_UP;
+    case Key::page_down: return GLFW_KEY_PAGE_DOWN;
+    default: break;
+    }
+    if (k >= Key::f1 && k <= Key::f12) return GLFW_KEY_F1 + (int(k) - int(Key::f1));
+    const int c = int(k);
+    if ((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == ' ') return c;
+    return GLFW_KEY_UNKNOWN;
+}
+
+bool held(GLFWwindow* w, int a, int b) { return glfwGetKey(w, a) == GLFW_PRESS || glfwGetKey(w, b) == GLFW_PRESS; }
+
+// the old `run --case` names, as the shipped exam cases that hold them
+std::string case_id(const std::string& name)
+{
+    if (name == "dvt-acute") return "cfv-fv-acute";
+    if (name == "dvt-chronic") return "fv-chronic";
+    return name;
+}
+
+}  // namespace
+
+std::string run_keys_help()
+{
+    return "Keys:\n"
+           "  the trainer     start screen: type the name; F1 two-point, F2 three-point, F3 extended lesson; F4/F5 previous/next case,\n"
+           "                  F6 random case; F7 difficulty; Enter starts. Exam: C compressible, N not compressible, H guidance on/off,\n"
+           "                  End finishes. Report: Enter a new lesson. Ctrl+Alt+Q quits (the only way in --kiosk)\n"
+           "  the probe       right-drag or arrows slide it, W/S or Shift+wheel press it in and out, Q/E and A/D tilt it,\n"
+           "                  R levels it, T turns it (transverse/longitudinal)\n"
+           "  the scanner     + and - gain, Page Up and Page Down focus, Space freezes the image\n"
+           "  the view        left-drag orbits, the wheel zooms, V (or Home) resets it; F11 (or F) fullscreen; Esc quits\n";
+}
+
+UiWindowInput::UiWindowInput(GLFWwindow* window) : window_(window)
+{
+    if (g_char_target) throw std::logic_error("the UI's window input: one at a time");
+    g_char_target = this;
+    glfwSetCharCallback(window_, &UiWindowInput::on_char);
+    // a click between two polls still reads as pressed once
+    glfwSetInputMode(window_, GLFW_STICKY_MOUSE_BUTTONS, GLFW_TRUE);
+}
+
+UiWindowInput::~UiWindowInput()
+{
+    glfwSetCharCallback(window_, nullptr);
+    g_char_target = nullptr;
+}
+
+void UiWindowInput::on_char(GLFWwindow*, unsigned int c)
+{
+    if (g_char_target) g_char_target->chars_.push_back(char32_t(c));
+}
+
+ui::UiInput UiWindowInput::poll()
+{
+    ui::UiInput in;
+    // the cursor in the framebuffer's pixels (a HiDPI window's differ from its screen coordinates)
+    double x = 0, y = 0;
+    glfwGetCursorPos(window_, &x, &y);
+    int ww = 0, wh = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(window_, &ww, &wh);
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    if (ww > 0 && wh > 0 && glfwGetWindowAttrib(window_, GLFW_HOVERED)) {
+        in.mouse_x = float(x * fw / ww);
+        in.mouse_y = float(y * fh / wh);
+    }
+    in.mouse_down[0] = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    in.mouse_down[1] = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    in.mouse_down[2] = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    for (int k = 1; k < int(ui::Key::count); ++k) {
+        const int code = glfw_key(ui::Key(k));
+        if (code == GLFW_KEY_UNKNOWN) continue;
+        const bool now = glfwGetKey(window_, code) == GLFW_PRESS;
+        if (now) in.held.push_back(ui::Key(k));
+        if (now && !down_[k]) in.pressed.push_back(ui::Key(k));
+        down_[k] = now;
+    }
+    in.ctrl = held(window_, GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL);
+    in.shift = held(window_, GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT);
+    in.alt = held(window_, GLFW_KEY_LEFT_ALT, GLFW_KEY_RIGHT_ALT);
+    in.chars = std::move(chars_);
+    chars_.clear();
+    return in;
+}
+
+TrainerWindow::TrainerWindow(const RunArgs& args) : args_(args)
+{
+    trainer::TrainerOptions o;
+    o.cases = exam::shipped_cases();
+    o.records = args.records.empty() ? exam::default_records_path() : args.records;
+    o.reports = o.records.parent_path() / "reports";
+    o.kiosk = args.kiosk;
+    o.idle_timeout_s = args.kiosk ? args.idle_timeout_s : 0;  // a desk's run waits for its trainee
+    o.seed = std::uint64_t(std::chrono::system_clock::now().time_since_epoch().count());
+    trainer_ = std::make_shared<trainer::Trainer>(std::move(o));
+    const std::string id = case_id(args.case_name);
+    if (!trainer_->select_case(id)) {
+        std::string ids;
+        for (const exam::Scenario& c : trainer_->cases()) ids += (ids.empty() ? "" : ", ") + c.id;
+        throw std::invalid_argument("--case " + args.case_name + ": not a shipped case (" + ids + ", or random)");
+    }
+}
+
+const exam::Scenario& TrainerWindow::case_to_load() const
+{
+    if (resume_) return trainer_->lesson();
+    return trainer_->chosen_case();
+}
+
+VolumePair TrainerWindow::load_volumes(const gpu::ContextOptions& gpu, TerminalProgress& progress)
+{
+    const exam::Scenario& c = case_to_load();
+    if (!args_.volume.empty()) {
+        // the user's own volume serves every case (its labels judge the compression)
+        if (!volumes_.volume) volumes_ = user_volume(args_.volume, args_.labels);
+    } else if (loaded_ != c.id || !volumes_.volume) {
+        volumes_ = exam_volume(c, args_.coarse, gpu, progress);
+    }
+    loaded_ = c.id;
+    return volumes_;
+}
+
+void TrainerWindow::configure(runner::RunnerConfig& config)
+{
+    const exam::Scenario& c = case_to_load();
+    config.session.patient.venous_pressure_mmHg = c.patient.venous_pressure_mmHg;
+    config.session.patient.heart_rate_bpm = c.patient.heart_rate_bpm;
+    if (args_.kiosk) {
+        config.window.fullscreen = true;
+        if (GLFWmonitor* m = glfwGetPrimaryMonitor())
+            if (const GLFWvidmode* mode = glfwGetVideoMode(m)) {
+                config.window.width = std::min(mode->width, 3840);
+                config.window.height = std::min(mode->height, 2160);
+            }
+    }
+    trainer::DriverOptions d;
+    d.loaded_case = loaded_;
+    d.volume = volumes_.volume;
+    d.labels = volumes_.labels;
+    d.patient = config.session.patient;
+    const bool kiosk = args_.kiosk;
+    // the UI's scale, read once the window is open (the factory runs then): the monitor's content
+    // scale; the kiosk's at least its height over 1080 (a 4K kiosk read standing)
+    d.ui_scale = [kiosk]() {
+        float sx = 1, sy = 1;
+        if (GLFWmonitor* m = glfwGetPrimaryMonitor()) glfwGetMonitorContentScale(m, &sx, &sy);
+        float s = std::max(1.0f, sy);
+        if (kiosk)
+            if (GLFWmonitor* m = glfwGetPrimaryMonitor())
+                if (const GLFWvidmode* mode = glfwGetVideoMode(m)) s = std::max(s, float(std::min(mode->height, 2160)) / 1080.0f);
+        return std::clamp(s, 1.0f, 4.0f);
+    };
+    driver_ = std::make_shared<trainer::TrainerDriver>(trainer_, d);
+    if (!args_.volume.empty()) driver_->accept_any_case();
+    config.observers.push_back(driver_);
+    config.passes.push_back(driver_->pass());
+}
+
+void TrainerWindow::attach(runner::Runner& runner)
+{
+    input_ = std::make_unique<UiWindowInput>(runner.window()->handle());
+    if (resume_) {
+        trainer_->restart(runner.session().time());
+        resume_ = false;
+    }
+}
+
+void TrainerWindow::detach()
+{
+    input_.reset();
+    resume_ = again();
+}
+
+void TrainerWindow::filter(runner::Runner&, RunInput& in)
+{
+    if (!input_ || !driver_) return;
+    const ui::UiInput typed = input_->poll();
+    driver_->feed(typed);
+    const ui::UiPass* ui = driver_->ui();
+    if (ui && ui->wants_text() && (!typed.chars.empty() || !typed.pressed.empty() || !typed.held.empty())) {
+        // a name being typed: its letters are no probe, scanner or window keys
+        in.probe = {};
+        in.scanner = {};
+        in.reset_camera = false;
+        in.toggle_fullscreen = false;
+        in.quit = false;
+    }
+    if (ui && ui->wants_mouse()) {
+        in.orbit_yaw = in.orbit_pitch = 0;
+        in.zoom = 1;
+    }
+    if (args_.kiosk) {
+        in.quit = false;  // Esc: the instructor's Ctrl+Alt+Q alone ends a kiosk
+        in.toggle_fullscreen = false;
+        in.fullscreen.reset();
+    }
+}
+
+}  // namespace echosim::app

@@ -1,0 +1,86 @@
+// The trainer in `echosim run` (issue 32): what the window's run adds for it, kept here so the run
+// (app/cmd_run.cpp) only calls in at four places: the volumes of the lesson's case, the runner's
+// configuration (the UI pass, the trainer's driver, the kiosk's fullscreen window), the input's
+// filter each step, and whether to run again for another case.
+//
+//   - the cases: the shipped ones (assets/cases); `--case ID` (or random) pre-selects one; their
+//     volumes are the exams' (app/exam_volume.hpp, made once and cached), a runner holds one case's,
+//     so a lesson started on another case ends the runner and the run starts a new one for it
+//     (the window closes and opens again; the terminal shows a volume's first making);
+//   - the UI's input from the window (UiWindowInput): GLFW polled for the mouse (sticky buttons: a
+//     click between two frames is kept) and the keys, typed characters from GLFW's character
+//     callback; fed to the trainer's driver;
+//   - while a text field has the keyboard and keys are down, the run's own keys (the probe, the scanner, the view,
+//     fullscreen, Esc) stand aside; while the mouse is over the UI, it does not orbit the camera;
+//   - the kiosk (`--kiosk`): fullscreen at the display's resolution (gpu::Window caps it at
+//     3840x2160), the UI scaled from the monitor's content scale and at least to the display's height
+//     over 1080 (read standing), Esc and F11 do nothing (Ctrl+Alt+Q quits), `--idle-timeout S`
+//     (default 120) scores and stores an idle lesson and shows the start screen again.
+// Threads: the main thread (GLFW's rule).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/commands.hpp"
+#include "app/run_input.hpp"
+#include "app/terminal_progress.hpp"
+#include "app/volume_source.hpp"
+#include "gpu/context.hpp"
+#include "runner/runner.hpp"
+#include "trainer/trainer_driver.hpp"
+#include "ui/ui_input.hpp"
+
+struct GLFWwindow;
+
+namespace echosim::app {
+
+// The UI's input from a GLFW window (above). One at a time per process: GLFW's character callback
+// reaches it through a pointer kept for the window's lifetime (main thread only).
+class UiWindowInput {
+public:
+    explicit UiWindowInput(GLFWwindow* window);
+    ~UiWindowInput();
+    UiWindowInput(const UiWindowInput&) = delete;
+    UiWindowInput& operator=(const UiWindowInput&) = delete;
+    ui::UiInput poll();
+
+private:
+    GLFWwindow* window_;
+    std::u32string chars_;
+    bool down_[int(ui::Key::count)] = {};
+    static void on_char(GLFWwindow* window, unsigned int c);
+};
+
+class TrainerWindow {
+public:
+    // Reads the cases and opens nothing yet; throws naming what is wrong (an unknown --case).
+    explicit TrainerWindow(const RunArgs& args);
+
+    trainer::Trainer& trainer() { return *trainer_; }
+    // The case the next runner needs: the lesson's when one waits for its case, else the one chosen.
+    const exam::Scenario& case_to_load() const;
+    VolumePair load_volumes(const gpu::ContextOptions& gpu, TerminalProgress& progress);
+    // The runner's configuration for the case loaded: the patient, the UI pass and the driver, the
+    // kiosk's window.
+    void configure(runner::RunnerConfig& config);
+    // The runner made: the window's UI input, and a lesson that waited for its case started anew.
+    void attach(runner::Runner& runner);
+    // Each step, before the run's own input is applied.
+    void filter(runner::Runner& runner, RunInput& in);
+    // After a runner ended: whether the run goes on with another case's runner.
+    bool again() const { return driver_ && driver_->case_wanted().has_value(); }
+    void detach();  // the runner gone (its window with it)
+
+private:
+    RunArgs args_;
+    std::shared_ptr<trainer::Trainer> trainer_;
+    std::shared_ptr<trainer::TrainerDriver> driver_;
+    std::unique_ptr<UiWindowInput> input_;
+    std::string loaded_;          // the case whose volumes the runner holds
+    VolumePair volumes_;
+    bool resume_ = false;         // a lesson waits for its case's runner
+};
+
+}  // namespace echosim::app
