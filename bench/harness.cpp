@@ -39,6 +39,8 @@ const std::vector<Suite>& suites()
                  "the stations only, against real time", register_exam, true},
         {"bmode", "B-mode synthesis of sweep frames (scatterers, beam, PSF, log compression) at 400x500, 512x512, 1024x1024, frames/s",
          register_bmode, true},
+        {"e2e", "from a probe move to the presented echographic image showing it, real time: frames and milliseconds, headless and in a "
+                "window when there is a display", register_e2e, true},
     };
     return all;
 }

@@ -88,6 +88,9 @@ bool Runner::step()
         return false;
     }
     session::Session& s = scene_->session;
+    // real time: the haptic loop reads the device the input just fed (or a device of its own) before
+    // the view is taken, so this step's frame shows the probe where the input put it (a frame sooner)
+    if (frame_ && config_.drawing == Drawing::every_step) s.await_device(kAwaitDevice);
     s.advance(dt);
     const session::SessionView& view = s.view();  // one physics step for the observers, the scene and the image
     if (config_.camera_follows_probe) scene_->camera.follow(view.probe.position, float(dt));

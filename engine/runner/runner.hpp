@@ -16,7 +16,9 @@
 //   3. the input (Input::poll: the window's mouse and keyboard, a script) before the session moves;
 //      it may end the run (the user quit);
 //   4. session.advance(dt): in lock-step the physics and the haptic loop step here, on simulated
-//      time; in real time they run on their threads;
+//      time; in real time they run on their threads, and a step that draws a frame first waits (at
+//      most kAwaitDevice) for the haptic loop to read the device afresh, so the frame shows the
+//      probe where the input just put it, not where it was a frame before (Session::await_device);
 //   5. the session's view, once (the scene and the image show one physics step), to every
 //      observer's on_step, where an observer may ask for this step's frame (and its pixels);
 //   6. the frame, when it is drawn every step (Drawing::every_step) or one observer asked for it:
@@ -52,6 +54,10 @@
 namespace echosim::runner {
 
 class Runner;
+
+// The longest a real-time step waits for the haptic loop to read the device (step 4 below): two of
+// its 1 ms ticks and some slack.
+inline constexpr std::chrono::microseconds kAwaitDevice{3000};
 
 // What a step hands its observers (step 5 above).
 struct StepContext {

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -269,6 +270,15 @@ void Session::place_probe(const ProbePlacement& placement)
 void Session::place_probe_on_patch(float u, float v, double press_mm)
 {
     place_probe({leg_->probe_rest_pose(u, v), press_mm});
+}
+
+void Session::await_device(std::chrono::microseconds at_most)
+{
+    if (!haptics_ || options_.clock != Clock::real_time || stopped_) return;
+    const std::int64_t from = haptics_->ticks();
+    const auto give_up = std::chrono::steady_clock::now() + at_most;
+    // a tick is a millisecond: sleeping a tenth of one wastes little and burns no core
+    while (haptics_->ticks() < from + 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::sleep_for(std::chrono::microseconds(100));
 }
 
 void Session::advance(double dt)

@@ -254,6 +254,11 @@ public:
     // real time to the wall clock. With a device, lock-step ticks the haptic loop every period up to
     // the new time, stepping the physics in between; real time leaves both to their threads.
     void advance(double dt);
+    // Real time with a device: waits, at most `at_most`, for the haptic loop to read the device
+    // afresh (two ticks from now: the one under way may have read it before), so a view taken next
+    // shows what an input given just before did (a probe moved: the image plane moved). Returns
+    // at once in lock-step, without a device, or with the loop stopped. The driver's thread.
+    void await_device(std::chrono::microseconds at_most);
     // Lock-step: presses the probe resting at `rest` in to `press_mm` over 0.1 s, then holds it
     // for at least `settle_s` of simulated time and on until the tissue has settled under it (the
     // mean force on the probe over kSettleWindowS moves by less than settled_change_N from one

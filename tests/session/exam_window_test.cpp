@@ -192,6 +192,30 @@ TEST(ExamWindow, TheMouseAndKeyboardReachTheCanalAndPressThere)
     EXPECT_GT(std::abs(along.z), 0.9f) << "the array along the limb (world z runs down it)";
 }
 
+// Real time: after await_device the view shows the probe where the device was just moved (the
+// haptic loop read it), not where it was; lock-step and a stopped session return at once.
+TEST(ExamWindow, AwaitDeviceLetsTheViewShowTheDevicesNewPose)
+{
+    const scene::LegModel leg;
+    const Pose a = pressed_along_beam(leg.probe_rest_pose(0.5f, 0.5f), 2.0), b = pressed_along_beam(leg.probe_rest_pose(0.55f, 0.5f), 2.0);
+    auto hand = std::make_shared<test::HeldHand>(a, "moved hand");
+    SessionOptions o;
+    o.clock = Clock::real_time;
+    o.device = hand;
+    o.haptics.realtime_priority = false;
+    Session s(o);
+    for (Pose to : {b, a, b}) {
+        hand->move_to(to);
+        s.await_device(std::chrono::seconds(5));  // two ticks: a millisecond or two, or more on a loaded machine
+        s.advance(1.0 / 60);
+        EXPECT_LT(glm::distance(s.view().probe.position, to.position), 1e-3f);
+    }
+    s.stop();
+    const auto start = std::chrono::steady_clock::now();
+    s.await_device(std::chrono::seconds(5));
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << "a stopped session's loop ticks no more: no wait";
+}
+
 // Lock-step with the window moving: the same script twice gives the same forces, bit for bit.
 std::vector<double> scripted_walk()
 {
