@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -23,7 +22,7 @@
 #include "app/exam_run.hpp"
 #include "app/exam_volume.hpp"
 #include "bench/suites.hpp"
-#include "device/device.hpp"
+#include "device/held_device.hpp"
 #include "runner/runner.hpp"
 #include "scene/leg.hpp"
 
@@ -31,41 +30,6 @@ namespace echosim::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// The bench's hand: world poses it is given, read by the haptic loop's thread (a mutex hand-off).
-class MovedHand final : public device::Device {
-public:
-    explicit MovedHand(const Pose& p)
-    {
-        caps_.name = "the e2e bench's hand";
-        caps_.driver = "bench";
-        caps_.control = device::Control::world;
-        move_to(p);
-    }
-    void move_to(const Pose& p)
-    {
-        const std::lock_guard lock(mutex_);
-        sample_.connected = true;
-        sample_.control = device::Control::world;
-        sample_.position = {p.position.x, p.position.y, p.position.z};
-        sample_.orientation = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z).normalized();
-    }
-    const device::Capabilities& capabilities() const override { return caps_; }
-    bool read(double, device::DeviceSample& out) noexcept override
-    {
-        const std::lock_guard lock(mutex_);
-        ++sample_.sequence;
-        out = sample_;
-        return true;
-    }
-    void write_force(const Eigen::Vector3d&) noexcept override {}
-    void events(std::vector<device::DeviceEvent>&) override {}
-
-private:
-    device::Capabilities caps_;
-    std::mutex mutex_;
-    device::DeviceSample sample_;
-};
 
 // Watches for the first frame made from the moved probe after each move.
 class MoveWatch final : public runner::Observer {
@@ -122,7 +86,7 @@ void e2e_row(benchmark::State& state, const gpu::ContextOptions& gpu, runner::Ou
     Pose b = a;
     b.position += 6.0f * glm::normalize(leg.probe_rest_pose(0.55f, 0.5f).position - leg.probe_rest_pose(0.45f, 0.5f).position);
     for (auto _ : state) {
-        auto hand = std::make_shared<MovedHand>(a);
+        auto hand = std::make_shared<device::HeldDevice>(a, "the e2e bench's hand");
         auto watch = std::make_shared<MoveWatch>();
         runner::RunnerConfig c;
         c.name = "e2e";

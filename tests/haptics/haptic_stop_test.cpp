@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "device/held_hand.hpp"
+#include "device/held_device.hpp"
 #include "haptics/haptic_loop.hpp"
 #include "physics/physics_fixture.hpp"
 
@@ -15,10 +15,10 @@ namespace echosim::haptics {
 namespace {
 
 // A hand holding the probe 6 mm into the middle of the patch, for ever (world poses, as a scripted
-// trajectory gives them), that remembers the last force it was sent (test::HeldHand, held there).
-std::shared_ptr<test::HeldHand> pressing_hand()
+// trajectory gives them), that remembers the last force it was sent (device::HeldDevice, held there).
+std::shared_ptr<device::HeldDevice> pressing_hand()
 {
-    return std::make_shared<test::HeldHand>(pressed_along_beam(test::leg().probe_rest_pose(0.5f, 0.5f), 6.0), "pressing hand");
+    return std::make_shared<device::HeldDevice>(pressed_along_beam(test::leg().probe_rest_pose(0.5f, 0.5f), 6.0), "pressing hand");
 }
 
 TEST(HapticStop, TheLastForceSentIsZeroAfterALockStepRun)

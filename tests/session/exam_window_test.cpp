@@ -14,7 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include "device/held_hand.hpp"
+#include "device/held_device.hpp"
 #include "device/mouse_keyboard_device.hpp"
 #include "device/scripted_device.hpp"
 #include "haptics/probe_mapping.hpp"
@@ -198,7 +198,7 @@ TEST(ExamWindow, AwaitDeviceLetsTheViewShowTheDevicesNewPose)
 {
     const scene::LegModel leg;
     const Pose a = pressed_along_beam(leg.probe_rest_pose(0.5f, 0.5f), 2.0), b = pressed_along_beam(leg.probe_rest_pose(0.55f, 0.5f), 2.0);
-    auto hand = std::make_shared<test::HeldHand>(a, "moved hand");
+    auto hand = std::make_shared<device::HeldDevice>(a, "moved hand");
     SessionOptions o;
     o.clock = Clock::real_time;
     o.device = hand;
@@ -364,7 +364,7 @@ TEST(ExamWindow, RealTimeMovesWhileTheHapticLoopTicks)
     const scene::LegModel leg;
     const Pose home = leg.probe_rest_pose(0.5f, 0.5f);
     const Pose canal = leg.limb_rest_pose({leg.limb_t_at_z(-300.0f), home_theta()});
-    auto hand = std::make_shared<test::HeldHand>(pressed_along_beam(home, 5.0), "moved hand");
+    auto hand = std::make_shared<device::HeldDevice>(pressed_along_beam(home, 5.0), "moved hand");
     SessionOptions o = following();
     o.clock = Clock::real_time;
     o.device = hand;
