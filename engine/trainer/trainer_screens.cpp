@@ -38,9 +38,9 @@ const char* lesson_label(exam::Protocol p)
     return "?";
 }
 
-bool big_button(const char* label, const ImVec2& size, const ui::UiFonts& fonts, const ImVec4& colour)
+bool big_button(const char* label, const ImVec2& size, const ui::UiFonts& fonts, const ImVec4& colour, bool large = true)
 {
-    ImGui::PushFont(fonts.large);
+    ImGui::PushFont(large ? fonts.large : fonts.bold);
     ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(colour.x * 0.55f, colour.y * 0.55f, colour.z * 0.55f, 1.0f));
     ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(colour.x * 0.75f, colour.y * 0.75f, colour.z * 0.75f, 1.0f));
     ImGui::PushStyleColor(ImGuiCol_ButtonActive, colour);
@@ -135,14 +135,17 @@ void leg_map(const Trainer& t, const Guidance* g, std::optional<std::size_t> tar
     ImGui::Dummy(ImVec2(width, height));
     double top = -1e9, bottom = 1e9;
     for (const exam::StationTruth& s : truth) top = std::max(top, s.vein.centre.z), bottom = std::min(bottom, s.vein.centre.z);
-    const double margin = std::max(20.0, 0.08 * (top - bottom));
+    const double margin = std::max(40.0, 0.12 * (top - bottom));  // room for the arrow past the ends [mm]
     top += margin;
     bottom -= margin;
     const float x = o.x + width * 0.30f;
-    auto y_of = [&](double z) { return o.y + float((top - z) / (top - bottom)) * height; };
-    dl->AddRectFilled(ImVec2(x - 10 * scale, o.y), ImVec2(x + 10 * scale, o.y + height), u32(ImVec4(0.35f, 0.25f, 0.25f, 1)), 8 * scale);
-    dl->AddText(ImVec2(o.x, o.y), u32(kGrey), "groin");
-    dl->AddText(ImVec2(o.x, o.y + height - ImGui::GetFontSize()), u32(kGrey), "knee");
+    // the leg between a line for "groin" above and one for "knee" below
+    const float fs = ImGui::GetFontSize();
+    const float y0 = o.y + fs + 4 * scale, y1 = o.y + height - fs - 4 * scale;
+    auto y_of = [&](double z) { return y0 + float((top - z) / (top - bottom)) * (y1 - y0); };
+    dl->AddRectFilled(ImVec2(x - 10 * scale, y0), ImVec2(x + 10 * scale, y1), u32(ImVec4(0.35f, 0.25f, 0.25f, 1)), 8 * scale);
+    dl->AddText(ImVec2(x - ImGui::CalcTextSize("groin").x * 0.5f, o.y), u32(kGrey), "groin");
+    dl->AddText(ImVec2(x - ImGui::CalcTextSize("knee").x * 0.5f, y1 + 4 * scale), u32(kGrey), "knee");
     const bool expert = t.form().difficulty == Difficulty::expert;
     for (std::size_t i = 0; i < truth.size(); ++i) {
         const float y = y_of(truth[i].vein.centre.z);
@@ -162,15 +165,16 @@ void leg_map(const Trainer& t, const Guidance* g, std::optional<std::size_t> tar
         const float px = x - 22 * scale;
         dl->AddTriangleFilled(ImVec2(px - 8 * scale, y - 7 * scale), ImVec2(px - 8 * scale, y + 7 * scale), ImVec2(px + 4 * scale, y), u32(kAmber));
         // the arrow to the next station
-        if (g && target && alpha > 0 && !g->there) {
-            const float ty = y_of(truth[*target].vein.centre.z);
-            if (std::abs(ty - y) > 6 * scale) {
-                const float ax = px - 16 * scale;
-                dl->AddLine(ImVec2(ax, y), ImVec2(ax, ty), u32(kAmber, alpha), 3 * scale);
-                const float dir = ty > y ? 1.0f : -1.0f;
-                dl->AddTriangleFilled(ImVec2(ax - 7 * scale, ty - dir * 10 * scale), ImVec2(ax + 7 * scale, ty - dir * 10 * scale), ImVec2(ax, ty),
-                                      u32(kAmber, alpha));
-            }
+        if (g && target && alpha > 0 && !g->there && std::abs(g->along_mm) >= 3) {
+            // from the probe towards the station, at least a thumb's length on the map
+            const float dir = g->along_mm > 0 ? -1.0f : 1.0f;  // up the map: towards the groin
+            float ty = y_of(truth[*target].vein.centre.z);
+            if (std::abs(ty - y) < 36 * scale) ty = y + dir * 36 * scale;
+            ty = std::clamp(ty, y0, y1);
+            const float ax = px - 16 * scale;
+            dl->AddLine(ImVec2(ax, y), ImVec2(ax, ty - dir * 12 * scale), u32(kAmber, alpha), 5 * scale);
+            dl->AddTriangleFilled(ImVec2(ax - 10 * scale, ty - dir * 14 * scale), ImVec2(ax + 10 * scale, ty - dir * 14 * scale), ImVec2(ax, ty),
+                                  u32(kAmber, alpha));
         }
     }
 }
@@ -190,10 +194,18 @@ void turn_dial(const Guidance& g, float alpha, float size, float scale)
     const ImVec2 v(std::sin(a) * r, -std::cos(a) * r);
     dl->AddLine(ImVec2(c.x - v.x, c.y - v.y), ImVec2(c.x + v.x, c.y + v.y), u32(ImVec4(0.45f, 0.55f, 0.95f, 1.0f), alpha), 2.5f * scale);
     if (std::abs(g.turn_deg) >= 5 && alpha > 0) {
-        // the arc the probe turns through
-        const float start = -3.14159265f * 0.5f, end = start + a;
-        dl->PathArcTo(c, r * 0.65f, std::min(start, end), std::max(start, end), 24);
-        dl->PathStroke(u32(kAmber, alpha), 0, 3 * scale);
+        // the turn to make, an arc round the dial from where the array points (screen angles grow
+        // clockwise) to where it should, with its head
+        const float from = 0.0f, to = a;
+        const float rr = r * 0.88f;
+        dl->PathArcTo(c, rr, std::min(from, to), std::max(from, to), 24);
+        dl->PathStroke(u32(kAmber, alpha), 0, 5 * scale);
+        const ImVec2 tip(c.x + std::cos(to) * rr, c.y + std::sin(to) * rr);
+        const float t = to > from ? 1.0f : -1.0f;  // the arc's direction at its end
+        const ImVec2 along(-std::sin(to) * t, std::cos(to) * t), out(std::cos(to), std::sin(to));
+        const float h = 11 * scale;
+        dl->AddTriangleFilled(ImVec2(tip.x + along.x * h, tip.y + along.y * h), ImVec2(tip.x - along.x * 2 + out.x * h * 0.8f, tip.y - along.y * 2 + out.y * h * 0.8f),
+                              ImVec2(tip.x - along.x * 2 - out.x * h * 0.8f, tip.y - along.y * 2 - out.y * h * 0.8f), u32(kAmber, alpha));
     }
 }
 
@@ -229,7 +241,7 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
     // the panel over the leg's view, left of the echographic image
     const render::TargetRect image = runner::echo_panel_rect(extent, echo::ImagePlane{});
     const float image_left = image.x * float(extent.width);
-    const float w = std::min(380.0f * scale, std::max(200.0f, image_left * 0.6f));
+    const float w = std::min(400.0f * scale, std::max(200.0f, image_left * 0.6f));
     ImGui::SetNextWindowPos(ImVec2(8 * scale, 8 * scale));
     ImGui::SetNextWindowSize(ImVec2(w, float(extent.height) - 16 * scale));
     ImGui::SetNextWindowBgAlpha(0.82f);
@@ -286,10 +298,10 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
     // the calls
     ImGui::Separator();
     const float bw = (w - 34 * scale) * 0.5f;
-    if (big_button("Compressible\n(C)", ImVec2(bw, 64 * scale), fonts, kGreen)) t.call(view.time_s, exam::Call::compressible);
+    if (big_button("Compressible\n(C)", ImVec2(bw, 64 * scale), fonts, kGreen, false)) t.call(view.time_s, exam::Call::compressible);
     remember(state, "compressible");
     ImGui::SameLine();
-    if (big_button("Not compr.\n(N)", ImVec2(bw, 64 * scale), fonts, kRed)) t.call(view.time_s, exam::Call::not_compressible);
+    if (big_button("Not compressible\n(N)", ImVec2(bw, 64 * scale), fonts, kRed, false)) t.call(view.time_s, exam::Call::not_compressible);
     remember(state, "not-compressible");
     if (const std::optional<std::size_t> last = scorer.last_examined()) {
         const exam::Call c = scorer.progress(*last).call;

@@ -143,6 +143,7 @@ UiPass::UiPass(const runner::PassSetup& setup, const UiOptions& options) : ctx_(
     const float px = options_.font_px * options_.scale;
     fonts_.body = add_font(io, options_.load_system_font ? kSystemFont : nullptr, px);
     fonts_.large = add_font(io, options_.load_system_font ? kSystemBoldFont : nullptr, px * 1.6f);
+    fonts_.bold = add_font(io, options_.load_system_font ? kSystemBoldFont : nullptr, px * 1.15f);
 
     // the back-end: its pipeline made for our render pass; its fonts uploaded once, now
     ImGui_ImplVulkan_InitInfo info{};

@@ -53,7 +53,8 @@ struct UiOptions {
 // The fonts a draw callback may push (ImGui::PushFont).
 struct UiFonts {
     ImFont* body = nullptr;
-    ImFont* large = nullptr;  // headings, the call buttons (1.6x)
+    ImFont* large = nullptr;  // headings (1.6x, bold)
+    ImFont* bold = nullptr;   // buttons (1.15x, bold)
 };
 
 class UiPass final : public runner::SessionPass {

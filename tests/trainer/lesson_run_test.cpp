@@ -386,3 +386,95 @@ TEST(TrainerKiosk, TheIdleTimeoutStoresTheLessonAndShowsTheStartScreen)
 
 }  // namespace
 }  // namespace echosim
+
+namespace echosim {
+namespace {
+
+// The probe held 40 mm below a station (towards the knee) and turned 25 degrees off transverse,
+// the lesson started by Enter at step 2; the frame read back at the last step.
+io::RgbaImage away_from_station(trainer::Difficulty difficulty, std::string* guidance)
+{
+    const std::filesystem::path dir = temp(std::string("trainer_guidance_") + trainer::difficulty_name(difficulty));
+    auto t = std::make_shared<trainer::Trainer>(kiosk_options(dir));
+    t->form().difficulty = difficulty;
+    const SmallVolume v = small_volume();
+    auto driver = std::make_shared<trainer::TrainerDriver>(
+        t, trainer::DriverOptions{.frame_every_steps = 1, .loaded_case = "healthy", .volume = v.grey, .labels = v.labels});
+    struct Hand final : runner::Input {
+        std::shared_ptr<trainer::TrainerDriver> driver;
+        bool poll(runner::Runner& r, double) override
+        {
+            trainer::Trainer& tr = driver->trainer();
+            if (tr.screen() == trainer::Screen::exam) {
+                const exam::StationTruth& st = tr.scorer().truth()[0];
+                glm::dvec3 up = st.vein.direction;
+                if (up.z < 0) up = -up;
+                Pose p = st.ideal_probe;
+                p.position -= glm::vec3(40.0 * up);
+                p.orientation = glm::angleAxis(glm::radians(25.0f), p.axis_y()) * p.orientation;
+                r.session().place_probe({p, 0.0});
+            }
+            driver->feed(r.steps() == 2 ? press(ui::Key::enter) : ui::UiInput{});
+            return true;
+        }
+    };
+    auto hand = std::make_shared<Hand>();
+    hand->driver = driver;
+    io::RgbaImage shot;
+    runner::ExamOptions o;
+    o.volume = v.grey;
+    o.labels = v.labels;
+    o.duration_s = 10 / 60.0;
+    o.gpu = test::lavapipe_options();
+    o.extent = kExtent;
+    o.observers.push_back(driver);
+    o.input = hand;
+    runner::RunnerConfig config = runner::exam_config(std::move(o));
+    config.passes.push_back(driver->pass());
+    std::uint32_t messages = 0;
+    {
+        runner::Runner r(std::move(config));
+        const auto counter = r.validation_counter();
+        while (r.step())
+            if (r.steps() == 8) driver->capture([&](const io::RgbaImage& im) { shot = im; });
+        r.finish();
+        messages = counter->load();
+    }
+    EXPECT_EQ(messages, 0u);
+    const trainer::Guidance g = trainer::guide(t->last_sample().face, t->scorer().truth()[0], t->lesson().bands);
+    *guidance = trainer::guidance_text(g, trainer::guidance_level(difficulty));
+    io::write_png(std::filesystem::path(testing::TempDir()) / (std::string("trainer_guidance_") + trainer::difficulty_name(difficulty) + ".png"), shot);
+    return shot;
+}
+
+// pixels of the guidance's amber (the arrow, the sentence, the probe's marker) in the lesson panel
+long amber_pixels(const io::RgbaImage& im)
+{
+    long n = 0;
+    for (std::uint32_t y = 0; y < im.height; ++y)
+        for (std::uint32_t x = 0; x < std::min<std::uint32_t>(im.width, 420); ++x) {
+            const std::uint8_t* p = &im.pixels[(std::size_t(y) * im.width + x) * 4];
+            n += std::abs(int(p[0]) - 250) < 40 && std::abs(int(p[1]) - 191) < 40 && std::abs(int(p[2]) - 51) < 50;
+        }
+    return n;
+}
+
+TEST(TrainerGuidanceScreen, TheArrowAndDirectionsShowAwayFromTheStationAndFadeWithDifficulty)
+{
+    std::string beginner_text, expert_text;
+    const io::RgbaImage beginner = away_from_station(trainer::Difficulty::beginner, &beginner_text);
+    const io::RgbaImage expert = away_from_station(trainer::Difficulty::expert, &expert_text);
+    ASSERT_EQ(beginner.width, kExtent.width);
+    ASSERT_EQ(expert.width, kExtent.width);
+    EXPECT_NE(beginner_text.find("towards the groin"), std::string::npos) << beginner_text;
+    EXPECT_NE(beginner_text.find("turn 25 deg"), std::string::npos) << beginner_text;
+    EXPECT_EQ(expert_text, "");
+    // the beginner's panel carries the arrow and the sentence in amber; the expert's only the
+    // probe's marker and the next station's ring
+    const long a = amber_pixels(beginner), b = amber_pixels(expert);
+    EXPECT_GT(a, 3 * b) << a << " vs " << b;
+    EXPECT_GT(a - b, 500) << a << " vs " << b;
+}
+
+}  // namespace
+}  // namespace echosim
