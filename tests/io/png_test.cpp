@@ -33,6 +33,24 @@ TEST(Png, RoundTripsEveryByte)
     std::filesystem::remove(path);
 }
 
+// An opaque image is written as RGB (a quarter less to compress) and reads back the same, alpha 255.
+TEST(Png, AnOpaqueImageIsWrittenAsRgbAndRoundTrips)
+{
+    RgbaImage img{64, 48, {}};
+    img.pixels.resize(64 * 48 * 4);
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = i % 4 == 3 ? 255 : std::uint8_t(i * 13 + (i / 256) * 7);
+    const auto path = temp("opaque.png");
+    write_png(path, img);
+    const RgbaImage back = read_png(path);
+    EXPECT_EQ(back.pixels, img.pixels);
+    // the IHDR's colour type (byte 25 of the file): 2, RGB
+    std::ifstream f(path, std::ios::binary);
+    char header[26] = {};
+    f.read(header, sizeof header);
+    EXPECT_EQ(int(header[25]), 2);
+    std::filesystem::remove(path);
+}
+
 TEST(Png, CorruptFileNamesTheFile)
 {
     const auto path = temp("corrupt.png");
