@@ -208,6 +208,14 @@ void TrainerWindow::detach()
 {
     input_.reset();
     resume_ = again();
+    // the run ends mid-lesson (the window closed, Ctrl+Alt+Q, a signal): the lesson is scored and
+    // stored as it stands, as the idle timeout stores it
+    if (!resume_ && trainer_->screen() == trainer::Screen::exam) {
+        trainer_->finish(true);
+        std::printf("echosim run: the lesson under way was stored%s: %s\n", trainer_->stored_id() ? "" : " (not in the records)",
+                    (trainer_->report_dir() / "report.html").c_str());
+        if (!trainer_->last_error().empty()) std::fprintf(stderr, "echosim run: %s\n", trainer_->last_error().c_str());
+    }
 }
 
 void TrainerWindow::filter(runner::Runner&, RunInput& in)

@@ -71,7 +71,9 @@ public:
     void filter(runner::Runner& runner, RunInput& in);
     // After a runner ended: whether the run goes on with another case's runner.
     bool again() const { return driver_ && driver_->case_wanted().has_value(); }
-    void detach();  // the runner gone (its window with it)
+    // The runner gone (its window with it); a lesson under way when the run ends is scored and
+    // stored as it stands.
+    void detach();
 
 private:
     RunArgs args_;

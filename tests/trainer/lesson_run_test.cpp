@@ -478,3 +478,30 @@ TEST(TrainerGuidanceScreen, TheArrowAndDirectionsShowAwayFromTheStationAndFadeWi
 
 }  // namespace
 }  // namespace echosim
+
+namespace echosim {
+namespace {
+
+TEST(TrainerKiosk, ALessonOnAnotherCaseAsksForItsRunner)
+{
+    const std::filesystem::path dir = temp("trainer_other_case");
+    trainer::TrainerOptions o = kiosk_options(dir);
+    o.cases = exam::shipped_cases();
+    auto t = std::make_shared<trainer::Trainer>(o);
+    ASSERT_TRUE(t->select_case("popliteal-acute"));
+    t->form().lesson = exam::Protocol::two_point;
+    // the runner holds healthy's volumes: Enter at step 2 starts the lesson and ends this runner
+    const KioskRun first = run_kiosk(t, {{2, press(ui::Key::enter)}}, 1.0);
+    EXPECT_EQ(first.messages, 0u);
+    EXPECT_EQ(first.steps, 3);
+    EXPECT_EQ(t->screen(), trainer::Screen::exam);
+    EXPECT_EQ(t->lesson().id, "popliteal-acute");
+    EXPECT_EQ(t->lesson().stations.size(), 2u);
+    // the run's next runner holds that case: the lesson starts anew on its clock
+    t->restart(0.0);
+    EXPECT_EQ(t->started_s(), 0.0);
+    EXPECT_EQ(t->target(), std::optional<std::size_t>(0));
+}
+
+}  // namespace
+}  // namespace echosim
