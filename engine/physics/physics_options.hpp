@@ -61,7 +61,9 @@ struct PhysicsOptions {
     // the forces and the Jacobian (a third of a core on the 2,500-node patch) to move nothing. Ten
     // micrometres a second (a micrometre over sleep_after) and a tenth of a micrometre are far
     // below anything an image or a hand resolves; a device's own noise keeps its tissue awake.
-    // sleep_after = 0 turns sleeping off.
+    // Tissue still with nothing touching it sleeps wherever the probe goes as long as it stays clear
+    // of the skin (a lifted probe carried between stations; each such step runs the contact test
+    // alone, and wakes the tissue at the first touch). sleep_after = 0 turns sleeping off.
     double sleep_speed = 1e-2;      // [mm/s]
     double sleep_probe_mm = 1e-4;   // [mm]
     double sleep_after = 0.1;       // [s]

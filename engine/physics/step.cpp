@@ -82,21 +82,32 @@ bool probe_still(const CompiledModel& model, const contact::ProbeState& now, con
     return (now.position - then.position).norm() + turn * half_diagonal <= o.sleep_probe_mm && now.velocity.norm() <= o.sleep_speed;
 }
 
-// Whether the tissue sleeps through this step: still for options.sleep_after, under a probe still
-// where it was and the same load (PhysicsOptions::sleep_speed).
-bool sleeps(const CompiledModel& model, const TissueState& s)
+// Whether the probe touches no skin at the state's positions (the contact stage's own test; its
+// contacts and forces land in the state's, which a step that goes on computes anew).
+bool probe_clear(const CompiledModel& model, TissueState& s)
 {
-    const PhysicsOptions& o = model.options;
-    return o.sleep_after > 0 && s.still_for >= o.sleep_after && probe_still(model, s.probe, s.still_probe) &&
-           s.external == s.still_external;
+    return contact::collide(model.probe, model.penalty, s.probe, model.surface, s.x, s.v, s.contacts, s.force) == 0;
 }
 
-// After a step: how long the tissue has been still, under the probe and the load it was still under.
+// Whether the tissue sleeps through this step: still for options.sleep_after under the same load,
+// and either under a probe still where it was, or with nothing touching it and the probe still
+// clear of the skin wherever it has gone (a lifted probe carried to the next station: the tissue
+// at rest, untouched, stays so). The clear test is the contact stage's, a few per cent of a step.
+bool sleeps(const CompiledModel& model, TissueState& s)
+{
+    const PhysicsOptions& o = model.options;
+    if (!(o.sleep_after > 0 && s.still_for >= o.sleep_after && s.external == s.still_external)) return false;
+    if (probe_still(model, s.probe, s.still_probe)) return true;
+    return s.last.contacts == 0 && probe_clear(model, s);
+}
+
+// After a step: how long the tissue has been still, under the same load and the probe it was still
+// under (or none touching it: where an untouching probe goes does not matter).
 void track_stillness(const CompiledModel& model, TissueState& s, double max_speed2)
 {
     const double v = model.options.sleep_speed;
     const bool same_load = s.external == s.still_external;
-    if (max_speed2 <= v * v && same_load && probe_still(model, s.probe, s.still_probe)) {
+    if (max_speed2 <= v * v && same_load && (s.last.contacts == 0 || probe_still(model, s.probe, s.still_probe))) {
         s.still_for += model.options.time_step;
         return;
     }

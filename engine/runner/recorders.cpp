@@ -1,9 +1,15 @@
 #include "runner/recorders.hpp"
 
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
+#include <deque>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
+#include <utility>
 
 namespace echosim::runner {
 
@@ -17,6 +23,84 @@ void make_folder(const std::filesystem::path& dir)
 }
 
 }  // namespace
+
+// The recorder's writer: one thread taking (file, frame) pairs off a queue of at most kQueued and
+// writing them in order. Hand-offs under `mutex`: the driver pushes (waiting while the queue is
+// full) and takes the first error; the thread pops and sets it. The frames' buffers go round: a
+// written frame's buffer is reused for a later one (no allocation once two are made).
+struct FrameRecorder::Writer {
+    static constexpr std::size_t kQueued = 2;
+    struct Job {
+        std::filesystem::path file;
+        io::RgbaImage image;
+    };
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::deque<Job> queue;
+    std::vector<io::RgbaImage> spare;
+    std::exception_ptr error;
+    bool closing = false;
+    std::thread thread{[this] { run(); }};
+
+    ~Writer()
+    {
+        {
+            const std::lock_guard lock(mutex);
+            closing = true;
+        }
+        changed.notify_all();
+        thread.join();
+    }
+    void run()
+    {
+        std::unique_lock lock(mutex);
+        for (;;) {
+            changed.wait(lock, [&] { return closing || !queue.empty(); });
+            if (queue.empty()) return;  // closing, and all written
+            Job job = std::move(queue.front());
+            lock.unlock();
+            std::exception_ptr failed;
+            try {
+                if (!error) io::write_png(job.file, job.image);  // after a failure the rest are dropped
+            } catch (...) {
+                failed = std::current_exception();
+            }
+            lock.lock();
+            queue.pop_front();
+            if (failed && !error) error = failed;
+            spare.push_back(std::move(job.image));
+            changed.notify_all();
+        }
+    }
+    // Queues `image` for `file` (copied into a spare buffer); rethrows a failure of an earlier one.
+    void push(const std::filesystem::path& file, const io::RgbaImage& image)
+    {
+        std::unique_lock lock(mutex);
+        changed.wait(lock, [&] { return queue.size() < kQueued || error; });
+        rethrow_locked();
+        io::RgbaImage copy;
+        if (!spare.empty()) {
+            copy = std::move(spare.back());
+            spare.pop_back();
+        }
+        copy.width = image.width;
+        copy.height = image.height;
+        copy.pixels.assign(image.pixels.begin(), image.pixels.end());
+        queue.push_back({file, std::move(copy)});
+        changed.notify_all();
+    }
+    // Waits until everything queued is written; rethrows the first failure.
+    void drain()
+    {
+        std::unique_lock lock(mutex);
+        changed.wait(lock, [&] { return queue.empty(); });
+        rethrow_locked();
+    }
+    void rethrow_locked()
+    {
+        if (error) std::rethrow_exception(std::exchange(error, nullptr));
+    }
+};
 
 FrameRecorder::FrameRecorder(std::filesystem::path dir, double frames_per_s) : dir_(std::move(dir)), rate_(frames_per_s)
 {
@@ -49,13 +133,21 @@ void FrameRecorder::on_step(StepContext& step)
     step.want_frame(true);
 }
 
+FrameRecorder::~FrameRecorder() = default;  // the writer's thread finishes what is queued
+
 void FrameRecorder::on_frame(const FrameContext& frame)
 {
     if (pending_ < 0 || !frame.pixels) return;
     const std::filesystem::path file = dir_ / file_name(pending_);
-    io::write_png(file, *frame.pixels);
+    if (!writer_) writer_ = std::make_unique<Writer>();
+    writer_->push(file, *frame.pixels);
     written_.push_back(file);
     pending_ = -1;
+}
+
+void FrameRecorder::on_finish(const FinishContext&)
+{
+    if (writer_) writer_->drain();
 }
 
 io::RgbaImage to_rgba(const echo::EchoImage& image)

@@ -194,6 +194,43 @@ TEST(Physics, TissueSettledUnderAStillProbeSleepsAndWakesWhenTheProbeOrTheLoadMo
     EXPECT_EQ(s.resets, 0);
 }
 
+// Tissue at rest with nothing touching it sleeps while a lifted probe moves about clear of the
+// skin (carried between stations), and wakes at the first touch.
+TEST(Physics, UntouchedTissueSleepsWhileALiftedProbeMovesAndWakesAtATouch)
+{
+    PhysicsOptions o;
+    o.gravity.setZero();
+    Simulation sim(compile_model(test::shipped_model(7), o));
+    TissueState& s = sim.state;
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    for (int i = 0; i < 300; ++i) {
+        place_probe(s, rest, -5.0);  // 5 mm above the skin, still
+        sim.step();
+    }
+    ASSERT_TRUE(s.last.asleep);
+    const Eigen::VectorXd x = s.x;
+    // carried across the patch, 5 mm up: the tissue sleeps on, nothing moves
+    for (int i = 0; i < 200; ++i) {
+        place_probe(s, test::leg().probe_rest_pose(0.5f + 0.001f * float(i), 0.5f), -5.0);
+        sim.step();
+        ASSERT_TRUE(s.last.asleep) << "step " << i;
+    }
+    EXPECT_EQ(s.x, x);
+    EXPECT_EQ(s.last.contacts, 0);
+    // lowered onto the skin and in: the step that touches is awake and pushes back
+    const Pose there = test::leg().probe_rest_pose(0.7f, 0.5f);
+    int first_touch = -1;
+    for (int i = 0; i < 200 && first_touch < 0; ++i) {
+        place_probe(s, there, -5.0 + 0.1 * i);
+        sim.step();
+        if (s.last.contacts > 0) first_touch = i;
+    }
+    ASSERT_GE(first_touch, 0);
+    EXPECT_FALSE(s.last.asleep);
+    EXPECT_GT(s.last.probe_force_N, 0.0);
+    EXPECT_EQ(s.resets, 0);
+}
+
 TEST(Physics, TwoRunsGiveTheSameResult)
 {
     // two states stepped on one shared compiled model

@@ -129,6 +129,30 @@ TEST(RunnerConfigurations, TheExamStepsThroughTheRunnerAndWritesFramesAtItsRate)
     std::filesystem::remove_all(dir);
 }
 
+// The frames are written on the recorder's own thread: a frame that cannot be written (its name
+// taken by a folder) still ends the run with an error naming the file, the frames before it kept.
+TEST(RunnerConfigurations, AFrameThatCannotBeWrittenEndsTheRunNamingIt)
+{
+    const TestVolumes v = small_volume();
+    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "runner_frame_fault";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / runner::FrameRecorder::file_name(2));
+    runner::ExamOptions o = small_exam(v);
+    o.duration_s = 0.2;
+    o.frames_per_s = 30;
+    o.frames_dir = dir;
+    try {
+        runner::Runner r(runner::exam_config(std::move(o)));
+        r.run();
+        ADD_FAILURE() << "the run ended without the write's error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(runner::FrameRecorder::file_name(2)), std::string::npos) << e.what();
+    }
+    for (int k = 0; k < 2; ++k) EXPECT_NO_THROW(io::read_png(dir / runner::FrameRecorder::file_name(k))) << "frame " << k;
+    EXPECT_TRUE(std::filesystem::is_directory(dir / runner::FrameRecorder::file_name(2)));
+    std::filesystem::remove_all(dir);
+}
+
 TEST(RunnerConfigurations, TheHapticsDemoStepsThroughTheRunnerOneStepATick)
 {
     app::SlideScript script;
