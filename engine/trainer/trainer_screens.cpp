@@ -326,17 +326,22 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
     const float h = float(extent.height) * 0.94f;
     ImGui::SetNextWindowPos(ImVec2((float(extent.width) - w) * 0.5f, float(extent.height) * 0.03f));
     ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::Begin("Report", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar);
+    ImGui::Begin("Report", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
     ImGui::PushFont(fonts.large);
     ImGui::TextColored(r.passed ? kGreen : kRed, "Score %.0f %%  (pass mark %.0f %%): %s", 100 * r.score, 100 * r.pass_mark, r.passed ? "passed" : "not passed");
     ImGui::PopFont();
+    // the way on, at the top right where a long report never pushes it out of sight
+    ImGui::SameLine(w - w * 0.3f - 12 * scale);
+    const bool again = big_button("New lesson  (Enter)", ImVec2(w * 0.3f, 0), fonts, kBlue, false);
+    remember(state, "new-lesson");
+    if (again) t.new_lesson();
     ImGui::Text("%s%s%s, %s protocol", r.trainee.empty() ? "" : r.trainee.c_str(), r.trainee.empty() ? "" : ": ", r.case_title.c_str(), r.protocol.c_str());
     ImGui::PushTextWrapPos(w - 20 * scale);
     ImGui::TextColored(kAmber, "%s", r.conclusion.c_str());
     ImGui::PopTextWrapPos();
     if (!t.last_error().empty()) ImGui::TextColored(kRed, "%s", t.last_error().c_str());
 
-    const float table_h = h * 0.42f;
+    const float table_h = h * 0.38f;
     if (ImGui::BeginTable("stations", 7, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, table_h))) {
         ImGui::TableSetupScrollFreeze(0, 1);
         for (const char* c : {"Station", "Reached", "Peak force", "Vein closed to", "Truth", "Call", ""}) ImGui::TableSetupColumn(c);
@@ -358,20 +363,27 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(exam::call_name(s.call));
             ImGui::TableNextColumn();
-            ImGui::TextColored(s.call_correct ? kGreen : kRed, "%s", s.call_correct ? "right" : "wrong");
+            if (s.call == exam::Call::none) ImGui::TextColored(kGrey, "no call");
+            else ImGui::TextColored(s.call_correct ? kGreen : kRed, "%s", s.call_correct ? "right" : "wrong");
         }
         ImGui::EndTable();
     }
     ImGui::Text("Errors flagged: %zu", r.errors.size());
-    for (const exam::FlaggedError& e : r.errors)
-        ImGui::TextColored(kRed, "  %s at %s: %s", exam::error_name(e.kind), e.station.empty() ? "the exam" : e.station.c_str(), e.detail.c_str());
+    if (!r.errors.empty()) {
+        ImGui::BeginChild("errors", ImVec2(0, std::min(h * 0.16f, float(r.errors.size()) * ImGui::GetTextLineHeightWithSpacing() + 8 * scale)), true);
+        for (const exam::FlaggedError& e : r.errors)
+            ImGui::TextColored(kRed, "%s at %s: %s", exam::error_name(e.kind), e.station.empty() ? "the exam" : e.station.c_str(), e.detail.c_str());
+        ImGui::EndChild();
+    }
     ImGui::Text("Time %.0f s, probe path %.0f mm", r.motion.duration_s, r.motion.path_mm);
     if (!t.report_dir().empty()) ImGui::TextColored(kGrey, "Report: %s", (t.report_dir() / "report.html").string().c_str());
 
     ImGui::Separator();
     const std::vector<exam::SessionRecord>& earlier = t.earlier();
     ImGui::Text("Sessions of %s in the records: %zu", r.trainee.empty() ? "this trainee" : r.trainee.c_str(), earlier.size());
-    if (!earlier.empty() && ImGui::BeginTable("earlier", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, h * 0.18f))) {
+    const float rest = h - (ImGui::GetCursorPosY() + 12 * scale);  // what the window has left for them
+    if (!earlier.empty() && rest > 40 * scale &&
+        ImGui::BeginTable("earlier", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, std::min(rest, h * 0.2f)))) {
         for (const char* c : {"#", "Case", "Protocol", "Score"}) ImGui::TableSetupColumn(c);
         ImGui::TableHeadersRow();
         for (auto it = earlier.rbegin(); it != earlier.rend(); ++it) {
@@ -387,9 +399,6 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
         }
         ImGui::EndTable();
     }
-    const bool again = big_button("New lesson  (Enter)", ImVec2(w * 0.3f, 52 * scale), fonts, kBlue);
-    remember(state, "new-lesson");
-    if (again) t.new_lesson();
     ImGui::End();
     return Action::none;
 }

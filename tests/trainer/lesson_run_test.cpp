@@ -505,3 +505,53 @@ TEST(TrainerKiosk, ALessonOnAnotherCaseAsksForItsRunner)
 
 }  // namespace
 }  // namespace echosim
+
+namespace echosim {
+namespace {
+
+TEST(TrainerReportScreen, ALessonLeftAtOnceFlagsEveryStationAndTheReportStillOffersANewLesson)
+{
+    const std::filesystem::path dir = temp("trainer_report_errors");
+    auto t = std::make_shared<trainer::Trainer>(kiosk_options(dir));
+    t->form().trainee = "Quick Quitter";
+    const SmallVolume v = small_volume();
+    auto driver = std::make_shared<trainer::TrainerDriver>(
+        t, trainer::DriverOptions{.frame_every_steps = 1, .loaded_case = "healthy", .volume = v.grey, .labels = v.labels});
+    auto input = std::make_shared<KeysAt>();
+    input->driver = driver;
+    input->at = {{2, press(ui::Key::enter)}, {4, press(ui::Key::end)}};
+    runner::ExamOptions o;
+    o.volume = v.grey;
+    o.labels = v.labels;
+    o.duration_s = 10 / 60.0;
+    o.gpu = test::lavapipe_options();
+    o.extent = kExtent;
+    o.observers.push_back(driver);
+    o.input = input;
+    runner::RunnerConfig config = runner::exam_config(std::move(o));
+    config.passes.push_back(driver->pass());
+    io::RgbaImage shot;
+    std::uint32_t messages = 0;
+    {
+        runner::Runner r(std::move(config));
+        const auto counter = r.validation_counter();
+        while (r.step())
+            if (r.steps() == 8) driver->capture([&](const io::RgbaImage& im) { shot = im; });
+        r.finish();
+        messages = counter->load();
+    }
+    EXPECT_EQ(messages, 0u);
+    ASSERT_EQ(t->screen(), trainer::Screen::report);
+    const exam::ExamReport& r = t->report();
+    EXPECT_FALSE(r.passed);
+    EXPECT_EQ(r.errors.size(), r.stations.size());  // every station skipped
+    for (const exam::FlaggedError& e : r.errors) EXPECT_EQ(e.kind, exam::ErrorKind::skipped_station);
+    // the button to go on is drawn inside the frame, however long the report
+    const trainer::ScreenState::Rect& again = driver->screens().hotspots.at("new-lesson");
+    EXPECT_GT(again.y0, 0.0f);
+    EXPECT_LT(again.y1, float(kExtent.height));
+    io::write_png(std::filesystem::path(testing::TempDir()) / "trainer_report_errors.png", shot);
+}
+
+}  // namespace
+}  // namespace echosim
