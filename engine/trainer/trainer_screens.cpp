@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -319,6 +320,36 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
 
 // --- report screen
 
+// The force over the exam, the adequate band shaded and the excessive limit drawn across it.
+void force_trace(const exam::ExamReport& r, float width, float height, float scale)
+{
+    if (r.force_trace.size() < 2) return;
+    // one value a pixel column at most: the largest force in the column's span of samples
+    const std::size_t n = std::min<std::size_t>(r.force_trace.size(), std::size_t(std::max(2.0f, width)));
+    std::vector<float> values(n, 0.0f);
+    for (std::size_t i = 0; i < r.force_trace.size(); ++i) {
+        const std::size_t k = i * n / r.force_trace.size();
+        values[k] = std::max(values[k], float(r.force_trace[i].second));
+    }
+    float top = float(std::max(r.excessive_force_N * 1.3, 1.0));
+    for (float v : values) top = std::max(top, v);
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    auto y_of = [&](double f) { return o.y + height - float(f / top) * height; };
+    dl->AddRectFilled(o, ImVec2(o.x + width, o.y + height), u32(ImVec4(0.12f, 0.13f, 0.15f, 0.8f)));
+    if (r.adequate_force_N > 0 && r.excessive_force_N > 0) {
+        dl->AddRectFilled(ImVec2(o.x, y_of(r.excessive_force_N)), ImVec2(o.x + width, y_of(r.adequate_force_N)), u32(ImVec4(0.20f, 0.45f, 0.25f, 0.45f)));
+        dl->AddLine(ImVec2(o.x, y_of(r.excessive_force_N)), ImVec2(o.x + width, y_of(r.excessive_force_N)), u32(kRed), 1.5f * scale);
+    }
+    ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0, 0, 0, 0));  // the background and the band drawn above
+    ImGui::PushStyleColor(ImGuiCol_PlotLines, kAmber);
+    ImGui::PlotLines("##force", values.data(), int(values.size()), 0, nullptr, 0.0f, top, ImVec2(width, height));
+    ImGui::PopStyleColor(2);
+    char label[64];
+    std::snprintf(label, sizeof label, "force over the exam, 0 to %.0f N", double(top));
+    dl->AddText(ImVec2(o.x + 6 * scale, o.y + 2 * scale), u32(kGrey), label);
+}
+
 Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, float scale, ScreenState& state)
 {
     const exam::ExamReport& r = t.report();
@@ -376,6 +407,7 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
         ImGui::EndChild();
     }
     ImGui::Text("Time %.0f s, probe path %.0f mm", r.motion.duration_s, r.motion.path_mm);
+    force_trace(r, w - 24 * scale, 70 * scale, scale);
     if (!t.report_dir().empty()) ImGui::TextColored(kGrey, "Report: %s", (t.report_dir() / "report.html").string().c_str());
 
     ImGui::Separator();
