@@ -29,6 +29,7 @@
 #include "gpu/window.hpp"
 #include "haptics/probe_mapping.hpp"
 #include "igtl/server.hpp"
+#include "runner/guide_pass.hpp"
 #include "runner/runner.hpp"
 
 namespace echosim::app {
@@ -48,8 +49,9 @@ void apply_to_window(const RunInput& in, gpu::Window& window)
 // mouse-and-keyboard device (read only when it is the session's device).
 class RunControls final : public runner::Input {
 public:
-    RunControls(std::unique_ptr<InputSource> source, std::shared_ptr<device::MouseKeyboardDevice> mouse, TrainerWindow* trainer)
-        : source_(std::move(source)), mouse_(std::move(mouse)), trainer_(trainer)
+    RunControls(std::unique_ptr<InputSource> source, std::shared_ptr<device::MouseKeyboardDevice> mouse, TrainerWindow* trainer,
+                std::shared_ptr<runner::GuideSwitch> guides)
+        : source_(std::move(source)), mouse_(std::move(mouse)), trainer_(trainer), guides_(std::move(guides))
     {
     }
     bool poll(runner::Runner& runner, double dt_s) override
@@ -64,6 +66,7 @@ public:
         camera.orbit(in.orbit_yaw, in.orbit_pitch);
         camera.zoom(in.zoom);
         runner::apply(*runner.frame(), in.scanner);
+        if (in.toggle_guides) guides_->shown = !guides_->shown;
         mouse_->feed(in.probe);
         return true;
     }
@@ -72,6 +75,7 @@ private:
     std::unique_ptr<InputSource> source_;
     std::shared_ptr<device::MouseKeyboardDevice> mouse_;
     TrainerWindow* trainer_;
+    std::shared_ptr<runner::GuideSwitch> guides_;
 };
 
 // What the run says and shows beside the frame: the device's events (and, while it is away, the
@@ -224,6 +228,7 @@ int run_window(const RunArgs& args)
     }
     VolumePair volumes;
     std::unique_ptr<TrainerWindow> trainer;
+    const auto guides = std::make_shared<runner::GuideSwitch>();
     TerminalProgress progress(std::string("echosim run: ") + kCaseVolumeProgress);
     try {
         if (args.volume.empty() && !args.labels.empty())
@@ -270,6 +275,10 @@ int run_window(const RunArgs& args)
         // pose it was drawn at (app/live_link.hpp)
         if (live) config.observers.push_back(live);
         trainer->configure(config);
+        // the practice guides (G): the case's vessels and the image plane in the leg, for the
+        // phantom's own volumes (a volume of the user's has its own anatomy)
+        if (args.volume.empty())
+            config.passes.push_back(runner::guide_pass_factory(runner::course_guides(scene::LegModel{}, trainer->case_to_load().anatomy), guides));
         std::shared_ptr<const std::atomic<std::uint32_t>> messages;
         {
             runner::Runner runner(std::move(config));
@@ -287,7 +296,7 @@ int run_window(const RunArgs& args)
                 input = std::make_unique<ExerciseScript>(glm::ivec2(args.width, args.height));
             else
                 input = std::make_unique<WindowInput>(*runner.window());
-            runner.set_input(std::make_shared<RunControls>(std::move(input), mouse, trainer.get()));
+            runner.set_input(std::make_shared<RunControls>(std::move(input), mouse, trainer.get(), guides));
             runner.run();  // ends stopping the session: the haptic loop first, which sends the device a zero force
 
             swapchains += runner.window_output()->swapchain_generation();

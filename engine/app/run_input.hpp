@@ -18,6 +18,7 @@ struct RunInput {
     float zoom = 1;                        // distance factor (< 1 closer)
     bool reset_camera = false;             // the default view again, still on the probe
     runner::ScannerInput scanner;          // gain, focus, freeze
+    bool toggle_guides = false;            // the practice guides: the vessels and the image plane in the leg
     // the probe, for the mouse-and-keyboard device (device/mouse_keyboard_device.hpp): a slide
     // over the exam patch (fractions of its extent), a tilt, and a press along the beam
     device::SurfaceMotion probe;

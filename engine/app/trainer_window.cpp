@@ -67,7 +67,8 @@ std::string run_keys_help()
            "  the probe       right-drag or arrows slide it, W/S or Shift+wheel press it in and out, Q/E and A/D tilt it,\n"
            "                  R levels it, T turns it (transverse/longitudinal)\n"
            "  the scanner     + and - gain, Page Up and Page Down focus, Space freezes the image\n"
-           "  the view        left-drag orbits, the wheel zooms, V (or Home) resets it; F11 (or F) fullscreen; Esc quits\n";
+           "  the view        left-drag orbits, the wheel zooms, V (or Home) resets it; G shows the vessels and the image plane\n"
+           "                  in the leg (practice guides); F11 (or F) fullscreen; Esc quits\n";
 }
 
 UiWindowInput::UiWindowInput(GLFWwindow* window) : window_(window)

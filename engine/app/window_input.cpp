@@ -42,6 +42,7 @@ WindowInput::WindowInput(gpu::Window& window) : window_(window.handle())
         if (key == GLFW_KEY_F11 || (key == GLFW_KEY_F && !k.dragging)) k.toggle_fullscreen = true;
         if (key == GLFW_KEY_R) k.level = true;
         if (key == GLFW_KEY_T) k.turn = true;
+        if (key == GLFW_KEY_G) k.toggle_guides = true;
         // the scanner: + / - gain, Page Down / Page Up the focus deeper / shallower, Space freezes
         if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) ++k.scanner.gain_steps;
         if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) --k.scanner.gain_steps;
@@ -84,11 +85,12 @@ RunInput WindowInput::poll(float dt)
     m.dpress_mm = 15.0 * dt * double(pressed(window_, GLFW_KEY_W) - pressed(window_, GLFW_KEY_S)) + k.press_scroll;
     in.toggle_fullscreen = k.toggle_fullscreen;
     in.reset_camera = k.reset_camera;
+    in.toggle_guides = k.toggle_guides;
     in.scanner = k.scanner;
     k.scanner = {};
     in.quit = k.quit;
     k.drag_x = k.drag_y = k.probe_x = k.probe_y = k.scroll = k.press_scroll = 0;
-    k.toggle_fullscreen = k.quit = k.level = k.reset_camera = k.turn = false;
+    k.toggle_fullscreen = k.quit = k.level = k.reset_camera = k.turn = k.toggle_guides = false;
     return in;
 }
 

@@ -2,7 +2,8 @@
 // right-drag or the arrow keys slide the probe over the patch, Q/E fan it and A/D rock it (30
 // degrees a second), R sets it upright again, T turns it a quarter about its beam (transverse to
 // longitudinal and back), + and - the gain, Page Down and Page Up the focus, Space freezes, W/S or Shift+wheel press it in and out, V (or Home)
-// gives the default view again, F11 (or F) toggles fullscreen, Esc quits. GLFW's callbacks collect what happened between two
+// gives the default view again, G shows or hides the practice guides (the vessels and the image
+// plane in the leg), F11 (or F) toggles fullscreen, Esc quits. GLFW's callbacks collect what happened between two
 // polls; main thread only (GLFW's rule).
 #pragma once
 
@@ -33,7 +34,7 @@ public:
         double drag_x = 0, drag_y = 0;    // camera drag [px]
         double probe_x = 0, probe_y = 0;  // probe drag [px]
         double scroll = 0, press_scroll = 0;  // wheel notches: zoom, or with Shift the press
-        bool toggle_fullscreen = false, quit = false, level = false, reset_camera = false, turn = false;
+        bool toggle_fullscreen = false, quit = false, level = false, reset_camera = false, turn = false, toggle_guides = false;
         runner::ScannerInput scanner;
     };
 

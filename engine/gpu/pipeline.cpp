@@ -11,7 +11,7 @@ Pipeline::Pipeline(VkDevice device, VkDescriptorSetLayout set_layout, VkPushCons
     : device_(device)
 {
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    info.setLayoutCount = 1;
+    info.setLayoutCount = set_layout != VK_NULL_HANDLE ? 1 : 0;  // none: push constants alone
     info.pSetLayouts = &set_layout;
     info.pushConstantRangeCount = push.size > 0 ? 1 : 0;
     info.pPushConstantRanges = &push;

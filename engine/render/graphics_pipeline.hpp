@@ -1,6 +1,6 @@
 // The render layer's graphics pipelines, made one way: dynamic rendering into one colour attachment
 // (and a depth attachment where the pass has one), viewport and scissor set when recording, filled
-// polygons, no blending. A pass says only what differs.
+// polygons, opaque unless asked to blend. A pass says only what differs.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,7 @@ struct GraphicsPipelineDesc {
     VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     VkFormat color_format = VK_FORMAT_UNDEFINED;
     VkFormat depth_format = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment, no depth test
+    bool blend = false;  // "over" by the fragment's alpha (see-through overlays), else opaque
     // both shaders' boolean specialization constants, constant_id 0, 1, ... in order (a constant a
     // stage does not declare is ignored there)
     std::span<const VkBool32> constants;

@@ -67,21 +67,7 @@ void ImagePanelPass::record(const gpu::PassContext& frame)
         bound = shown;
     }
 
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = frame.target.view;
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = target_use().attachment_load_op();  // keep what the scene drew around the panel
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = area;
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &color;
-    vkCmdBeginRendering(frame.cmd, &rendering);
-
-    const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
-    vkCmdSetViewport(frame.cmd, 0, 1, &vp);
-    vkCmdSetScissor(frame.cmd, 0, 1, &area);
+    begin_rendering_over(frame.cmd, frame.target.view, area, target_use().attachment_load_op());  // keep what the scene drew around the panel
     const gpu::Pipeline& pipeline = gpu::is_srgb(image_->format()) ? srgb_pipeline_ : pipeline_;
     vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
     const VkDescriptorSet set = descriptors_.set(frame.slot);

@@ -23,4 +23,22 @@ VkRect2D target_pixels(const TargetRect& rect, VkExtent2D extent)
             {std::uint32_t(std::max<std::int64_t>(0, x1 - x0)), std::uint32_t(std::max<std::int64_t>(0, y1 - y0))}};
 }
 
+void begin_rendering_over(VkCommandBuffer cmd, VkImageView view, VkRect2D area, VkAttachmentLoadOp load)
+{
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = load;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = area;
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &color;
+    vkCmdBeginRendering(cmd, &rendering);
+    const VkViewport vp{float(area.offset.x), float(area.offset.y), float(area.extent.width), float(area.extent.height), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &area);
+}
+
 }  // namespace echosim::render

@@ -15,4 +15,9 @@ struct TargetRect {
 // to the target).
 VkRect2D target_pixels(const TargetRect& rect, VkExtent2D extent);
 
+// Begins dynamic rendering into the target `view` (in COLOR_ATTACHMENT_OPTIMAL, stored) over `area`,
+// its colour loaded or cleared as `load` says, with the viewport and scissor on `area`: how a pass
+// that draws over part of the frame starts. End it with vkCmdEndRendering.
+void begin_rendering_over(VkCommandBuffer cmd, VkImageView view, VkRect2D area, VkAttachmentLoadOp load);
+
 }  // namespace echosim::render

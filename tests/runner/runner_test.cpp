@@ -20,6 +20,7 @@
 #include "echo/echo_test_volumes.hpp"
 #include "io/png.hpp"
 #include "runner/exam_config.hpp"
+#include "runner/guide_pass.hpp"
 #include "runner/image_cue.hpp"
 #include "runner/recorders.hpp"
 #include "runner/runner.hpp"
@@ -434,6 +435,77 @@ TEST(Runner, AFrozenImageStaysWhileTheProbeMovesOn)
         long sum_brighter = 0, sum_before = 0;
         for (std::size_t i = 0; i < before.size(); ++i) sum_brighter += brighter[i], sum_before += before[i];
         EXPECT_GT(sum_brighter, sum_before) << "10 dB more gain: a brighter image";
+    }
+    EXPECT_EQ(messages->load(), 0u);
+}
+
+// A tube around a line: `sides` vertices a point, each at the point's radius from it, and two
+// triangles a side between consecutive points.
+TEST(GuidePass, TubesHaveTheirRadiiAroundTheLine)
+{
+    runner::GuideLine line{{{0, 0, 0}, {0, 0, -10}, {5, 0, -20}}, {2.0f, 3.0f, 1.0f}, {}};
+    const runner::TubeMesh m = runner::tube_mesh(line, 6);
+    ASSERT_EQ(m.positions.size(), 18u);
+    EXPECT_EQ(m.indices.size(), 2u * 6u * 6u);
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(glm::distance(m.positions[6 * i + k], line.centre[i]), line.radius_mm[i], 1e-4f);
+    for (std::uint32_t idx : m.indices) EXPECT_LT(idx, 18u);
+    EXPECT_TRUE(runner::tube_mesh({{{0, 0, 0}}, {1.0f}, {}}).indices.empty());
+}
+
+// The practice guides, shown: the leg's side of the frame gains the vessels' blue and red where the
+// course runs and the image plane's amber at the probe; the image panel is untouched; hidden, the
+// frame is the frame without them, byte for byte.
+TEST(GuidePass, ShownTheVesselsAndThePlaneShowThroughTheLeg)
+{
+    const TestVolumes v = small_volume();
+    const scene::LegModel leg;
+    const std::vector<runner::GuideLine> course = runner::course_guides(leg, echo::Anatomy{});
+    ASSERT_GE(course.size(), 2u);
+    EXPECT_GT(course[0].centre.size(), 100u) << "the deep vein sampled every 5 mm over 51.5 cm";
+    EXPECT_NEAR(course[0].centre.front().z, 15.0f, 5.0f) << "from above the ligament";
+    EXPECT_LT(course[0].centre.back().z, -450.0f) << "to the trifurcation";
+    auto shown = std::make_shared<runner::GuideSwitch>();
+    runner::ExamOptions o = small_exam(v);
+    o.extent = {480, 270};
+    o.duration_s = 1.0;
+    auto place = std::make_shared<PlaceProbe>();
+    place->rest = leg.probe_rest_pose(0.5f, 0.5f);
+    o.input = place;
+    auto keep = std::make_shared<KeepFrame>();
+    o.observers.push_back(keep);
+    runner::RunnerConfig c = runner::exam_config(std::move(o));
+    c.passes.push_back(runner::guide_pass_factory(course, shown));
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        runner::Runner r(std::move(c));
+        messages = r.validation_counter();
+        ASSERT_TRUE(r.step());
+        ASSERT_TRUE(r.step());
+        const io::RgbaImage without = keep->last;
+        shown->shown = true;
+        ASSERT_TRUE(r.step());
+        const io::RgbaImage with = keep->last;
+        const render::TargetRect panel = runner::echo_panel_rect({480, 270}, r.session().image_plane());
+        const std::uint32_t panel_x = render::target_pixels(panel, {480, 270}).offset.x;
+        int bluer = 0, redder = 0, changed_in_panel = 0;
+        for (std::uint32_t y = 0; y < 270; ++y)
+            for (std::uint32_t x = 0; x < 480; ++x) {
+                const std::uint8_t *a = without.at(x, y), *b = with.at(x, y);
+                if (x >= panel_x) {
+                    changed_in_panel += std::equal(a, a + 3, b) ? 0 : 1;
+                    continue;
+                }
+                bluer += b[2] > a[2] + 20 && b[0] < a[0] ? 1 : 0;
+                redder += b[0] > a[0] + 10 && b[2] < a[2] ? 1 : 0;
+            }
+        EXPECT_GT(bluer, 200) << "the veins";
+        EXPECT_GT(redder, 100) << "the artery and the plane";
+        EXPECT_EQ(changed_in_panel, 0);
+        if (const char* dir = std::getenv("ECHOSIM_RUNNER_FRAMES")) io::write_png(std::filesystem::path(dir) / "guides.png", with);
+        shown->shown = false;
+        ASSERT_TRUE(r.step());
+        EXPECT_EQ(keep->last.pixels, without.pixels);
     }
     EXPECT_EQ(messages->load(), 0u);
 }
