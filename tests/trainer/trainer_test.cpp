@@ -3,6 +3,8 @@
 // landing on the station examined, the idle timeout scoring and storing the session.
 #include <filesystem>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "exam/records.hpp"
@@ -27,7 +29,8 @@ trainer::TrainerOptions options(const std::string& name)
 {
     trainer::TrainerOptions o;
     o.cases = exam::shipped_cases();
-    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("trainer_" + name);
+    // the process's id in the name: the same test run by another process at once keeps apart
+    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("trainer_" + name + "-" + std::to_string(getpid()));
     std::filesystem::remove_all(dir);
     o.records = dir / "records.sqlite";
     o.reports = dir / "reports";
