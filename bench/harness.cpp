@@ -41,6 +41,8 @@ const std::vector<Suite>& suites()
          register_bmode, true},
         {"e2e", "from a probe move to the presented echographic image showing it, real time: frames and milliseconds, headless and in a "
                 "window when there is a display", register_e2e, true},
+        {"ui", "the trainer's UI pass in a 1920x1080 offscreen frame on its start, exam and report screens: the frame with it and "
+               "without, ms and the UI's share (issue 32: at most 10 %)", register_ui, true},
     };
     return all;
 }

@@ -17,5 +17,6 @@ std::shared_ptr<void> register_arm(const SuiteOptions& options);
 std::shared_ptr<void> register_exam(const SuiteOptions& options);
 std::shared_ptr<void> register_bmode(const SuiteOptions& options);
 std::shared_ptr<void> register_e2e(const SuiteOptions& options);
+std::shared_ptr<void> register_ui(const SuiteOptions& options);
 
 }  // namespace echosim::bench

@@ -27,6 +27,13 @@ void remember(ScreenState& state, const char* name)
     state.hotspots[name] = {a.x, a.y, b.x, b.y};
 }
 
+// `top` blended over the opaque `bottom`: opaque
+ImVec4 over(const ImVec4& top, const ImVec4& bottom)
+{
+    auto mix = [&](float t, float b) { return top.w * t + (1 - top.w) * b; };
+    return ImVec4(mix(top.x, bottom.x), mix(top.y, bottom.y), mix(top.z, bottom.z), 1.0f);
+}
+
 ImU32 u32(const ImVec4& c, float alpha = 1.0f) { return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, c.w * alpha)); }
 
 const char* lesson_label(exam::Protocol p)
@@ -61,7 +68,8 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
     const float h = std::min(float(extent.height) * 0.92f, 700.0f * scale);
     ImGui::SetNextWindowPos(ImVec2((float(extent.width) - w) * 0.5f, (float(extent.height) - h) * 0.5f));
     ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::Begin("echosim trainer", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar);
+    ImGui::Begin("echosim trainer", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBackground);
+    ui::solid_background();
     ImGui::PushFont(fonts.large);
     ImGui::TextUnformatted("Compression ultrasound of the leg's veins");
     ImGui::PopFont();
@@ -244,9 +252,13 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
     const float image_left = image.x * float(extent.width);
     const float w = std::min(400.0f * scale, std::max(200.0f, image_left * 0.6f));
     ImGui::SetNextWindowPos(ImVec2(8 * scale, 8 * scale));
-    ImGui::SetNextWindowSize(ImVec2(w, float(extent.height) - 16 * scale));
-    ImGui::SetNextWindowBgAlpha(0.82f);
-    ImGui::Begin("Lesson", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
+    // as tall as what it holds, at most the frame's height: the leg's view stays clear below it;
+    // solid, its text on a steady background (and on lavapipe a blended panel costs every pixel
+    // it covers: ui/ui_pass.hpp)
+    ImGui::SetNextWindowSizeConstraints(ImVec2(w, 0), ImVec2(w, float(extent.height) - 16 * scale));
+    ImGui::Begin("Lesson", nullptr,
+                 kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoBackground);
+    ui::solid_background();
     ImGui::TextColored(kGrey, "%s lesson, %s", exam::protocol_name(lesson.protocol), difficulty_name(t.form().difficulty));
     ImGui::PushTextWrapPos(w - 12 * scale);
     ImGui::TextUnformatted(t.form().case_index < 0 ? "Random case" : lesson.title.c_str());
@@ -320,12 +332,17 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
 
 // --- report screen
 
-// The force over the exam, the adequate band shaded and the excessive limit drawn across it.
+// The force over the exam, the adequate band shaded and the excessive limit drawn across it; the
+// trace one point a pixel column (the largest force in the column's span of samples), inset by the
+// frame's padding, and a flat run one segment (a lesson's trace is mostly rests and plateaus: on
+// lavapipe each segment is triangles to set up, ui/ui_pass.hpp).
 void force_trace(const exam::ExamReport& r, float width, float height, float scale)
 {
     if (r.force_trace.size() < 2) return;
-    // one value a pixel column at most: the largest force in the column's span of samples
-    const std::size_t n = std::min<std::size_t>(r.force_trace.size(), std::size_t(std::max(2.0f, width)));
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    ImGui::Dummy(ImVec2(width, height));
+    const ImVec2 pad = ImGui::GetStyle().FramePadding;
+    const std::size_t n = std::min<std::size_t>(r.force_trace.size(), std::size_t(std::max(2.0f, width - 2 * pad.x)));
     std::vector<float> values(n, 0.0f);
     for (std::size_t i = 0; i < r.force_trace.size(); ++i) {
         const std::size_t k = i * n / r.force_trace.size();
@@ -333,18 +350,23 @@ void force_trace(const exam::ExamReport& r, float width, float height, float sca
     }
     float top = float(std::max(r.excessive_force_N * 1.3, 1.0));
     for (float v : values) top = std::max(top, v);
-    const ImVec2 o = ImGui::GetCursorScreenPos();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     auto y_of = [&](double f) { return o.y + height - float(f / top) * height; };
-    dl->AddRectFilled(o, ImVec2(o.x + width, o.y + height), u32(ImVec4(0.12f, 0.13f, 0.15f, 0.8f)));
+    // the background and the band cleared under the window's content (ui::solid_rect), as they
+    // looked blended over it: no blended pixels
+    const ImVec4 back = over(ImVec4(0.12f, 0.13f, 0.15f, 0.8f), ImGui::GetStyleColorVec4(ImGuiCol_WindowBg));
+    ui::solid_rect(o, ImVec2(o.x + width, o.y + height), back);
     if (r.adequate_force_N > 0 && r.excessive_force_N > 0) {
-        dl->AddRectFilled(ImVec2(o.x, y_of(r.excessive_force_N)), ImVec2(o.x + width, y_of(r.adequate_force_N)), u32(ImVec4(0.20f, 0.45f, 0.25f, 0.45f)));
+        ui::solid_rect(ImVec2(o.x, y_of(r.excessive_force_N)), ImVec2(o.x + width, y_of(r.adequate_force_N)), over(ImVec4(0.20f, 0.45f, 0.25f, 0.45f), back));
         dl->AddLine(ImVec2(o.x, y_of(r.excessive_force_N)), ImVec2(o.x + width, y_of(r.excessive_force_N)), u32(kRed), 1.5f * scale);
     }
-    ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0, 0, 0, 0));  // the background and the band drawn above
-    ImGui::PushStyleColor(ImGuiCol_PlotLines, kAmber);
-    ImGui::PlotLines("##force", values.data(), int(values.size()), 0, nullptr, 0.0f, top, ImVec2(width, height));
-    ImGui::PopStyleColor(2);
+    const float x0 = o.x + pad.x, x1 = o.x + width - pad.x, y1 = o.y + height - pad.y, h = height - 2 * pad.y;
+    std::vector<ImVec2> points;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i > 0 && i + 1 < n && values[i] == values[i - 1] && values[i] == values[i + 1]) continue;  // inside a flat run
+        points.emplace_back(x0 + (x1 - x0) * float(i) / float(n - 1), y1 - values[i] / top * h);
+    }
+    dl->AddPolyline(points.data(), int(points.size()), u32(kAmber), 0, 1.0f);
     char label[64];
     std::snprintf(label, sizeof label, "force over the exam, 0 to %.0f N", double(top));
     dl->AddText(ImVec2(o.x + 6 * scale, o.y + 2 * scale), u32(kGrey), label);
@@ -357,7 +379,8 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
     const float h = float(extent.height) * 0.94f;
     ImGui::SetNextWindowPos(ImVec2((float(extent.width) - w) * 0.5f, float(extent.height) * 0.03f));
     ImGui::SetNextWindowSize(ImVec2(w, h));
-    ImGui::Begin("Report", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
+    ImGui::Begin("Report", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoBackground);
+    ui::solid_background();
     ImGui::PushFont(fonts.large);
     ImGui::TextColored(r.passed ? kGreen : kRed, "Score %.0f %%  (pass mark %.0f %%): %s", 100 * r.score, 100 * r.pass_mark, r.passed ? "passed" : "not passed");
     ImGui::PopFont();

@@ -1,6 +1,7 @@
 #include "ui/ui_pass.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -50,6 +51,27 @@ ImFont* add_font(ImGuiIO& io, const char* file, float px)
 }
 
 }  // namespace
+
+void solid_rect(const ImVec2& a, const ImVec2& b, const ImVec4& c)
+{
+    auto* pass = static_cast<UiPass*>(ImGui::GetIO().UserData);
+    if (!pass) return;
+    // within the window's clip rectangle, as ImGui would clip it
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 lo = dl->GetClipRectMin(), hi = dl->GetClipRectMax();
+    pass->add_backdrop({std::max(a.x, lo.x), std::max(a.y, lo.y), std::min(b.x, hi.x), std::min(b.y, hi.y), {c.x, c.y, c.z}});
+}
+
+void solid_background()
+{
+    const ImVec2 a = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    const ImVec2 b(a.x + size.x, a.y + size.y);
+    const ImVec4 c = ImGui::GetStyleColorVec4(ImGuiCol_WindowBg);
+    if (auto* pass = static_cast<UiPass*>(ImGui::GetIO().UserData)) pass->add_backdrop({a.x, a.y, b.x, b.y, {c.x, c.y, c.z}});
+    // the border ImGuiWindowFlags_NoBackground leaves out; drawn outside the window's clip rectangle
+    const float border = ImGui::GetStyle().WindowBorderSize;
+    if (border > 0) ImGui::GetForegroundDrawList()->AddRect(a, b, ImGui::GetColorU32(ImGuiCol_Border), 0.0f, 0, border);
+}
 
 UiPass::UiPass(const runner::PassSetup& setup, const UiOptions& options) : ctx_(setup.ctx), options_(options), format_(setup.format)
 {
@@ -107,6 +129,7 @@ UiPass::UiPass(const runner::PassSetup& setup, const UiOptions& options) : ctx_(
     imgui_ = ImGui::CreateContext();
     CurrentContext current(imgui_);
     ImGuiIO& io = ImGui::GetIO();
+    io.UserData = this;        // solid_background() finds the pass here
     io.IniFilename = nullptr;  // no imgui.ini written into the working folder
     io.LogFilename = nullptr;
     io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard;
@@ -210,6 +233,8 @@ void UiPass::apply(const UiInput& in, float dt_s)
 
 void UiPass::set(const session::SessionView& view, VkExtent2D extent)
 {
+    built_ = false;
+    if (!shown_) return;
     CurrentContext current(imgui_);
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(float(extent.width), float(extent.height));
@@ -230,6 +255,7 @@ void UiPass::set(const session::SessionView& view, VkExtent2D extent)
     } else {
         apply(current_, dt_s);
     }
+    backdrops_.clear();
     ImGui_ImplVulkan_NewFrame();
     ImGui::NewFrame();
     if (draw_) draw_(view, extent);
@@ -287,6 +313,17 @@ void UiPass::record(const gpu::PassContext& frame)
     begin.framebuffer = framebuffer_for(frame.target);
     begin.renderArea = {{0, 0}, frame.target.extent};
     vkCmdBeginRenderPass(frame.cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    // the solid backgrounds first, each clipped to the target (a clear's rectangle must lie in it)
+    for (const Backdrop& b : backdrops_) {
+        const float w = float(frame.target.extent.width), h = float(frame.target.extent.height);
+        const float x0 = std::clamp(std::round(b.x0), 0.0f, w), y0 = std::clamp(std::round(b.y0), 0.0f, h);
+        const float x1 = std::clamp(std::round(b.x1), 0.0f, w), y1 = std::clamp(std::round(b.y1), 0.0f, h);
+        if (x1 <= x0 || y1 <= y0) continue;
+        VkClearAttachment clear{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}};
+        clear.clearValue.color = {{b.rgb[0], b.rgb[1], b.rgb[2], 1.0f}};
+        const VkClearRect rect{{{std::int32_t(x0), std::int32_t(y0)}, {std::uint32_t(x1 - x0), std::uint32_t(y1 - y0)}}, 0, 1};
+        vkCmdClearAttachments(frame.cmd, 1, &clear, 1, &rect);
+    }
     ImGui_ImplVulkan_RenderDrawData(data, frame.cmd);
     vkCmdEndRenderPass(frame.cmd);
 }

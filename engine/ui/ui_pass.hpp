@@ -23,6 +23,13 @@
 //                  has no event queue: io.MousePos, io.MouseDown, io.KeysDown, AddInputCharacter),
 //                  NewFrame, the owner's draw callback (the trainer's screens), Render;
 //   record()     : the draw data into the frame's command buffer, inside the pass's render pass.
+// Solid backgrounds: a window begun with ImGuiWindowFlags_NoBackground and then solid_background()
+// gets its background as a clear of its rectangle (vkCmdClearAttachments) at the start of the
+// pass, under everything ImGui draws, instead of ImGui's triangles. On lavapipe every pixel ImGui
+// covers runs its textured, blended fragment shader (some 10 ns a pixel on two loaded cores: the
+// start screen's 760x700 window about 5 ms of a 1080p frame, bench/ui_bench.cpp); a clear is a
+// fill. Opaque only, and square-cornered.
+//
 // Fonts are rasterised and uploaded once, at set-up, at the scale asked for (UiOptions::scale: the
 // kiosk's monitor content scale), with the style's sizes scaled alike.
 //
@@ -41,6 +48,8 @@
 
 struct ImGuiContext;
 struct ImFont;
+struct ImVec2;
+struct ImVec4;
 
 namespace echosim::ui {
 
@@ -57,6 +66,14 @@ struct UiFonts {
     ImFont* bold = nullptr;   // buttons (1.15x, bold)
 };
 
+// Inside a draw callback, right after ImGui::Begin of a window begun with
+// ImGuiWindowFlags_NoBackground: the window's background as the style's WindowBg colour, opaque,
+// cleared under the UI (above), and its border drawn as ImGui would. Nothing outside a draw callback.
+void solid_background();
+// A rectangle [px, screen] of `colour` (its alpha ignored: opaque) on the solid background of the
+// window being drawn, cleared as it is: in call order, under everything ImGui draws.
+void solid_rect(const ImVec2& min, const ImVec2& max, const ImVec4& colour);
+
 class UiPass final : public runner::SessionPass {
 public:
     // What the owner draws each frame, with the pass's context current: ImGui calls only.
@@ -68,6 +85,9 @@ public:
     UiPass& operator=(const UiPass&) = delete;
 
     void set_draw(Draw draw) { draw_ = std::move(draw); }
+    // Hidden, the pass builds and draws nothing (the frame as without it: bench/ui_bench.cpp's
+    // baseline); the input queued waits for the frames after it is shown again.
+    void set_shown(bool shown) { shown_ = shown; }
     // The step's input, queued for the next frames built (above).
     void feed(const UiInput& input);
     std::size_t queued() const { return queue_.size(); }
@@ -86,6 +106,13 @@ public:
     float scale() const { return options_.scale; }
     const UiFonts& fonts() const { return fonts_; }
     ImGuiContext* context() const { return imgui_; }
+
+    // What solid_background() asks for, this frame: a rectangle [px] and its colour.
+    struct Backdrop {
+        float x0, y0, x1, y1;
+        float rgb[3];
+    };
+    void add_backdrop(const Backdrop& b) { backdrops_.push_back(b); }
 
 private:
     void apply(const UiInput& in, float dt_s);
@@ -109,6 +136,8 @@ private:
     UiInput current_;           // the mouse as last fed (held between inputs)
     std::vector<int> down_;     // the keys ImGui was told are down, to release them
     bool built_ = false;        // a frame built since the last record: draw data to record
+    bool shown_ = true;
+    std::vector<Backdrop> backdrops_;  // this frame's, drawn first (solid_background)
     bool wants_text_ = false, wants_mouse_ = false;
     std::int64_t frames_built_ = 0;
     double last_time_s_ = -1;
