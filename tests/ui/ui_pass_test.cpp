@@ -2,7 +2,9 @@
 // message fails): a panel drawn by the pass changes the frame's pixels where the panel is and
 // nowhere else (the frame without the pass read back beside it); a click injected as UiInput (the
 // mouse over a button, down one step, up the next) is seen by the UI as the button pressed; the
-// keyboard and typed characters reach a text field.
+// keyboard and typed characters reach a text field; a solid background (ui::solid_background,
+// ui::solid_rect) is one colour under the widgets, the scene not showing through; a hidden pass
+// leaves the frame as without it.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -76,6 +78,21 @@ void draw_panel(Seen& seen)
     ImGui::End();
 }
 
+// the panel with a solid background and, under the button's left half, a solid red rectangle
+void draw_solid_panel(Seen& seen)
+{
+    ImGui::SetNextWindowPos(ImVec2(kPanelX, kPanelY));
+    ImGui::SetNextWindowSize(ImVec2(kPanelW, kPanelH));
+    ImGui::Begin("test panel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoBackground);
+    ui::solid_background();
+    ui::solid_rect(ImVec2(kPanelX + 20, kPanelY + 50), ImVec2(kPanelX + 100, kPanelY + 90), ImVec4(1, 0, 0, 1));
+    ImGui::SetCursorPos(ImVec2(20, 50));
+    if (ImGui::Button("press me", ImVec2(160, 40))) ++seen.clicks;
+    ImGui::End();
+}
+
+enum class Panel { plain, solid, hidden };
+
 struct UiRun {
     io::RgbaImage last;
     std::uint32_t messages = 0;
@@ -83,7 +100,7 @@ struct UiRun {
 };
 
 // `steps` steps of a resting probe at 320 x 240, with the UI pass (and `script`) or without
-UiRun run(bool with_ui, int steps, Seen* seen, std::vector<ui::UiInput> script = {})
+UiRun run(bool with_ui, int steps, Seen* seen, std::vector<ui::UiInput> script = {}, Panel panel = Panel::plain)
 {
     const Volumes& v = small_volume();
     runner::ExamOptions o;
@@ -103,7 +120,11 @@ UiRun run(bool with_ui, int steps, Seen* seen, std::vector<ui::UiInput> script =
     if (with_ui)
         config.passes.push_back({runner::PassPlace::overlay, [&](const runner::PassSetup& setup) {
                                      auto p = std::make_unique<ui::UiPass>(setup, ui::UiOptions{.scale = 1.0f});
-                                     p->set_draw([seen](const session::SessionView&, VkExtent2D) { draw_panel(*seen); });
+                                     p->set_draw([seen, panel](const session::SessionView&, VkExtent2D) {
+                                         if (panel == Panel::solid) draw_solid_panel(*seen);
+                                         else draw_panel(*seen);
+                                     });
+                                     p->set_shown(panel != Panel::hidden);
                                      pass = p.get();
                                      return p;
                                  }});
@@ -163,6 +184,43 @@ TEST(UiPass, DrawsItsPanelWhereItIsAndNothingElse)
     const std::uint32_t face = pixel(ui.last, int(kPanelX + 20 + 80), int(kPanelY + 50 + 8));
     const int r = int(face & 0xff), g = int(face >> 8 & 0xff), b = int(face >> 16 & 0xff);
     EXPECT_GT(b, r + 40) << r << "," << g << "," << b;
+}
+
+TEST(UiPass, ASolidBackgroundIsOneColourUnderTheWidgetsAndAHiddenPassLeavesTheFrame)
+{
+    Seen seen;
+    const UiRun plain = run(false, 3, nullptr);
+    const UiRun solid = run(true, 3, &seen, {}, Panel::solid);
+    const UiRun hidden = run(true, 3, &seen, {}, Panel::hidden);
+    EXPECT_EQ(solid.messages, 0u);
+    EXPECT_EQ(hidden.messages, 0u);
+    ASSERT_EQ(solid.last.width, 320u);
+    ASSERT_EQ(hidden.last.width, 320u);
+    EXPECT_EQ(hidden.ui_frames, 0);
+    EXPECT_EQ(hidden.last.pixels, plain.last.pixels);
+    // below the button, inside the window's border: one colour, whatever the scene under it
+    const std::uint32_t bg = pixel(solid.last, int(kPanelX + 10), int(kPanelY + 120));
+    long below_n = 0, below_changed = 0, other = 0, outside_changed = 0;
+    for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x) {
+            const bool below = x >= int(kPanelX + 4) && x < int(kPanelX + kPanelW - 4) && y >= int(kPanelY + 100) && y < int(kPanelY + kPanelH - 4);
+            const bool in = float(x) >= kPanelX && float(x) < kPanelX + kPanelW && float(y) >= kPanelY && float(y) < kPanelY + kPanelH;
+            if (below) {
+                ++below_n;
+                other += pixel(solid.last, x, y) != bg;
+                below_changed += pixel(plain.last, x, y) != pixel(solid.last, x, y);
+            }
+            if (!in) outside_changed += pixel(plain.last, x, y) != pixel(solid.last, x, y);
+        }
+    EXPECT_EQ(other, 0);
+    EXPECT_GT(double(below_changed) / double(below_n), 0.95) << below_changed << " of " << below_n;
+    EXPECT_EQ(outside_changed, 0);
+    // the red rectangle under the button's translucent face: red still, blued a little
+    const std::uint32_t under = pixel(solid.last, int(kPanelX + 40), int(kPanelY + 58));
+    EXPECT_GT(int(under & 0xff), int(under >> 8 & 0xff) + 80) << std::hex << under;
+    // beside it the face over the window's background: blue
+    const std::uint32_t face = pixel(solid.last, int(kPanelX + 150), int(kPanelY + 58));
+    EXPECT_GT(int(face >> 16 & 0xff), int(face & 0xff) + 40) << std::hex << face;
 }
 
 TEST(UiPass, AnInjectedClickPressesTheButtonAndTypedKeysReachTheField)
