@@ -84,6 +84,19 @@ const std::vector<Goal>& design_goals()
          "fill_seconds", C::at_most, 30, 1, "s"},
         {"reconstruction: hole filling, 0.1 mm volume (native voxels)", "-", "volumes at native 0.1 mm voxels work (< 30 s)", "reconstruct",
          "reconstruct/0.1mm", "fill_seconds", C::at_most, 30, 1, "s"},
+        // the exam and the trainer (issues 31 and 32)
+        {"the extended exam headless, frames written at 10 per simulated second, lavapipe", "-", ">= real time (issue 31)", "exam",
+         "exam/extended/healthy/frames-10", "realtime_x", C::at_least, 1, 1, "x real time"},
+        {"the extended exam headless, images at the stations only, lavapipe", "-", ">= 5x real time (issue 31)", "exam",
+         "exam/extended/healthy/stations-only", "realtime_x", C::at_least, 5, 1, "x real time"},
+        {"a probe move to the presented image showing it, headless 1920x1080, lavapipe", "-", "within one displayed frame (issue 32)", "e2e",
+         "e2e/headless/1920x1080", "frames_p50", C::at_most, 1, 1, "frames"},
+        {"a probe move to the presented image showing it, a window (Xvfb) 1280x720, lavapipe", "-", "within one displayed frame (issue 32)",
+         "e2e", "e2e/window/1280x720", "frames_p50", C::at_most, 1, 1, "frames", "no display: run under xvfb-run"},
+        {"the trainer's UI pass, exam screen, 1920x1080, lavapipe", "-", "<= 10 % of the frame (issue 32)", "ui", "ui/1920x1080/exam",
+         "ui_share", C::at_most, 0.10, 100, "%"},
+        {"the trainer's UI pass, report screen, 1920x1080, lavapipe", "-", "<= 10 % of the frame (issue 32)", "ui", "ui/1920x1080/report",
+         "ui_share", C::at_most, 0.10, 100, "%"},
     };
     return goals;
 }
