@@ -301,6 +301,24 @@ struct KeysAt final : runner::Input {
     }
 };
 
+// The trainer over the small volume, offscreen on lavapipe: `driver` as the runner's observer and
+// UI pass, `input` feeding it, for `seconds` of lock-step.
+runner::RunnerConfig small_trainer_config(const SmallVolume& v, std::shared_ptr<trainer::TrainerDriver> driver,
+                                          std::shared_ptr<runner::Input> input, double seconds, VkExtent2D extent)
+{
+    runner::ExamOptions o;
+    o.volume = v.grey;
+    o.labels = v.labels;
+    o.duration_s = seconds;
+    o.gpu = test::lavapipe_options();
+    o.extent = extent;
+    o.observers.push_back(driver);
+    o.input = std::move(input);
+    runner::RunnerConfig config = runner::exam_config(std::move(o));
+    config.passes.push_back(driver->pass());
+    return config;
+}
+
 struct KioskRun {
     std::int64_t steps = 0;
     std::uint32_t messages = 0;
@@ -314,16 +332,7 @@ KioskRun run_kiosk(std::shared_ptr<trainer::Trainer> t, std::map<std::int64_t, u
     auto input = std::make_shared<KeysAt>();
     input->driver = driver;
     input->at = std::move(keys);
-    runner::ExamOptions o;
-    o.volume = v.grey;
-    o.labels = v.labels;
-    o.duration_s = seconds;
-    o.gpu = test::lavapipe_options();
-    o.extent = {480, 270};
-    o.observers.push_back(driver);
-    o.input = input;
-    runner::RunnerConfig config = runner::exam_config(std::move(o));
-    config.passes.push_back(driver->pass());
+    runner::RunnerConfig config = small_trainer_config(v, driver, input, seconds, {480, 270});
     KioskRun k;
     {
         runner::Runner r(std::move(config));
@@ -428,16 +437,7 @@ io::RgbaImage away_from_station(trainer::Difficulty difficulty, std::string* gui
     auto hand = std::make_shared<Hand>();
     hand->driver = driver;
     io::RgbaImage shot;
-    runner::ExamOptions o;
-    o.volume = v.grey;
-    o.labels = v.labels;
-    o.duration_s = 10 / 60.0;
-    o.gpu = test::lavapipe_options();
-    o.extent = kExtent;
-    o.observers.push_back(driver);
-    o.input = hand;
-    runner::RunnerConfig config = runner::exam_config(std::move(o));
-    config.passes.push_back(driver->pass());
+    runner::RunnerConfig config = small_trainer_config(v, driver, hand, 10 / 60.0, kExtent);
     std::uint32_t messages = 0;
     {
         runner::Runner r(std::move(config));
@@ -527,16 +527,7 @@ TEST(TrainerReportScreen, ALessonLeftAtOnceFlagsEveryStationAndTheReportStillOff
     auto input = std::make_shared<KeysAt>();
     input->driver = driver;
     input->at = {{2, press(ui::Key::enter)}, {4, press(ui::Key::end)}};
-    runner::ExamOptions o;
-    o.volume = v.grey;
-    o.labels = v.labels;
-    o.duration_s = 10 / 60.0;
-    o.gpu = test::lavapipe_options();
-    o.extent = kExtent;
-    o.observers.push_back(driver);
-    o.input = input;
-    runner::RunnerConfig config = runner::exam_config(std::move(o));
-    config.passes.push_back(driver->pass());
+    runner::RunnerConfig config = small_trainer_config(v, driver, input, 10 / 60.0, kExtent);
     io::RgbaImage shot;
     std::uint32_t messages = 0;
     {
