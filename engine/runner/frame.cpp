@@ -13,6 +13,11 @@ render::TargetRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& pla
     return {1.0f - width, 0.5f * (1.0f - height), width, height};
 }
 
+render::TargetRect scene_rect(VkExtent2D frame, const echo::ImagePlane& plane)
+{
+    return {0.0f, 0.0f, echo_panel_rect(frame, plane).x, 1.0f};
+}
+
 SimulatorFrame::SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& commands, VkFormat format, const DefaultScene& scene,
                                const io::Volume& volume, const io::Volume* labels, std::span<const PassFactory> extra)
     : scene_pass_(ctx, commands, format, scene.meshes()),
@@ -63,7 +68,7 @@ void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& 
     echo_pass_.set_frame(*state.echo);
     const render::TargetRect panel = echo_panel_rect(extent, scene.session.image_plane());
     panel_.set_rect(panel);
-    scene_pass_.set_area({0.0f, 0.0f, panel.x, 1.0f});
+    scene_pass_.set_area(scene_rect(extent, scene.session.image_plane()));
     // frozen, the image and its cue stay those of the frame it was frozen on
     const ImageCue cue = echo_pass_.frozen() ? cue_pass_.cue() : image_cue(*state.echo, scene.session.image_plane(), echo_image_.volume_grid());
     cue_pass_.set(cue, panel, extent);

@@ -40,6 +40,8 @@ namespace echosim::runner {
 // The echographic image's panel: the right of the frame, as tall as it is, keeping the image's
 // aspect (at most half the width).
 render::TargetRect echo_panel_rect(VkExtent2D frame, const echo::ImagePlane& plane);
+// The 3-D scene's area: the frame left of that panel, its whole height.
+render::TargetRect scene_rect(VkExtent2D frame, const echo::ImagePlane& plane);
 
 // Where a configuration's own pass joins the frame (above).
 enum class PassPlace { after_scene, image, overlay };

@@ -135,9 +135,7 @@ void GuidePass::set(const session::SessionView& state, VkExtent2D) { probe_to_wo
 void GuidePass::record(const gpu::PassContext& frame)
 {
     if (!shown_->shown) return;
-    // the scene's area (runner/frame.cpp): left of the image panel, the whole height
-    const render::TargetRect panel = echo_panel_rect(frame.target.extent, scene_.session.image_plane());
-    const VkRect2D area = render::target_pixels({0.0f, 0.0f, panel.x, 1.0f}, frame.target.extent);
+    const VkRect2D area = render::target_pixels(scene_rect(frame.target.extent, scene_.session.image_plane()), frame.target.extent);
     if (area.extent.width == 0 || area.extent.height == 0) return;
 
     render::begin_rendering_over(frame.cmd, frame.target.view, area, target_use().attachment_load_op());
