@@ -20,6 +20,7 @@
 #define ECHOSIM_BMODE_BINDINGS_H
 
 #include "kernel_shared.h"
+#include "slice_bindings.h"
 
 #ifdef __cplusplus
 namespace echosim::kernels {
@@ -61,6 +62,14 @@ namespace echosim::kernels {
 #define BMODE_ENVELOPE_BINDING 9   // float per pixel: the envelope before log compression (pass 4, variant)
 #define BMODE_FIELD_TEXELS_BINDING 10  // buffer A as RG32F texels (passes 2 and 4 read it)
 #define BMODE_LABEL_TEXELS_BINDING 11  // the tissue codes as R32UI texels (passes 2 and 4 read them)
+// Live frames (generative imaging: compute/bmode_live.comp replaces pass 1 for a frame of the echographic
+// image, image/echo_image_gpu.hpp), in the same set as the passes above:
+// (one block with the slice's parameters in it: with them in a block of their own, lavapipe, Mesa
+// 22.3, crashed running this kernel once it fetched from a texel buffer or an image)
+#define BMODE_LIVE_FRAME_BINDING 12   // uniform BModeLiveFrame: the pressed probe's image frame and the frame's slice parameters
+#define BMODE_LIVE_MAP_BINDING 13     // texel buffer, RG32F: the deform map (source y [mm], gain [dB])
+// and the case's tissue codes at BMODE_VOLUME_BINDING, as a sweep's label volume: a texel buffer,
+// x fastest, on the echographic volume's grid
 // Reads go through texel views, writes to storage: on a CPU device (lavapipe) a texel fetch is one
 // vector gather, a storage buffer's load a loop over the lanes; so no pass reads what it writes.
 
@@ -93,6 +102,13 @@ struct BModePose {
 };
 struct BModeFrames {
     BModePose frame[BMODE_MAX_FRAMES];
+};
+
+// A live frame: the pressed probe's image frame (world mm), where the tissue's rest state is looked
+// up: each pixel's source (x, source y) in it, the deform map's (deform_bindings.h) source depth.
+struct BModeLiveFrame {
+    BModePose pose;
+    SliceParams slice;  // the frame's (slice_bindings.h): the plane, the deform map's geometry, the pressed probe -> label voxel
 };
 
 // The shared functions read the parameters as `k`: a reference argument in C++ (BMODE_K), the
@@ -152,6 +168,18 @@ KERNEL_FN vec3 bmode_pixel_world(BModePose f, uint c, uint r, float pixel_mm, fl
     return p;
 }
 
+// Where the tissue a live frame shows at (x, source_y) of its pressed image frame rests, world mm:
+// the same lattice the sweeps hash, so the speckle the trainee presses is the recorded one's, and it
+// moves with the tissue (its cell is the tissue's rest position's, wherever the pixel now shows it).
+KERNEL_FN vec3 bmode_live_world(BModePose f, float x, float source_y)
+{
+    BMODE_PRECISE vec3 along_x = vec3(f.x) * x;
+    BMODE_PRECISE vec3 along_y = vec3(f.y) * source_y;
+    BMODE_PRECISE vec3 p = vec3(f.origin) + along_x;
+    p = p + along_y;
+    return p;
+}
+
 // The label volume's voxel nearest to p, as an index into it (x fastest), or -1 outside it.
 KERNEL_FN int bmode_voxel(vec3 p BMODE_K)
 {
@@ -165,9 +193,42 @@ KERNEL_FN int bmode_voxel(vec3 p BMODE_K)
     return int(fi) + int(k.volume_size_x) * (int(fj) + int(k.volume_size_y) * int(fl));
 }
 
+// The live frames' scatterers (bmode_live.comp): a continuous field of the body's position, the
+// lattice's scatterers (bmode_cell_hash's, at the cells' corners) interpolated trilinearly between
+// them, and scaled back to unit variance (a blend of independent scatterers is quieter than each by
+// the sum of its squared weights). Point-sampled as the sweeps are, the field jumps as a pixel's
+// tissue crosses a cell's edge: under a press of 1 mm the pressed image's blocks found in the image
+// at rest correlated 0.25 to 0.8; interpolated, a tissue moved a fraction of a cell moves its
+// speckle by as much (Storve & Torp's sub-sample motion without flicker).
+KERNEL_FN vec2 bmode_smooth_scatterer(vec3 p, vec3 inverse, uint salt)
+{
+    BMODE_PRECISE vec3 q = p * inverse;
+    const vec3 base = floor(q);
+    const ivec3 c = ivec3(base);
+    BMODE_PRECISE vec3 f = q - base;
+    const uint z0 = bmode_mix(uint(c.z) + salt), z1 = bmode_mix(uint(c.z + 1) + salt);
+    const uint y00 = bmode_mix(uint(c.y) + z0), y10 = bmode_mix(uint(c.y + 1) + z0);
+    const uint y01 = bmode_mix(uint(c.y) + z1), y11 = bmode_mix(uint(c.y + 1) + z1);
+    const uint x0 = uint(c.x), x1 = uint(c.x + 1);
+    BMODE_PRECISE vec2 a00 = mix(bmode_scatterer(bmode_mix(x0 + y00)), bmode_scatterer(bmode_mix(x1 + y00)), f.x);
+    BMODE_PRECISE vec2 a10 = mix(bmode_scatterer(bmode_mix(x0 + y10)), bmode_scatterer(bmode_mix(x1 + y10)), f.x);
+    BMODE_PRECISE vec2 a01 = mix(bmode_scatterer(bmode_mix(x0 + y01)), bmode_scatterer(bmode_mix(x1 + y01)), f.x);
+    BMODE_PRECISE vec2 a11 = mix(bmode_scatterer(bmode_mix(x0 + y11)), bmode_scatterer(bmode_mix(x1 + y11)), f.x);
+    BMODE_PRECISE vec2 b0 = mix(a00, a10, f.y);
+    BMODE_PRECISE vec2 b1 = mix(a01, a11, f.y);
+    BMODE_PRECISE vec2 v = mix(b0, b1, f.z);
+    BMODE_PRECISE vec3 g = vec3(1.0f) - f;
+    BMODE_PRECISE vec3 w = g * g + f * f;  // each axis's blend's variance
+    BMODE_PRECISE float variance = w.x * w.y * w.z;
+    return v * (1.0f / sqrt(variance));
+}
+
 // The complex scatterer field at p summed over the beam's elevational planes (along the probe's
-// z), each plane one lattice step from the next and weighted by the beam's profile.
-KERNEL_FN vec2 bmode_elevation_sum(vec3 p, vec3 z BMODE_K)
+// z), weighted by the beam's profile: for a sweep each plane one lattice step from the next, the
+// field point-sampled; for a live frame (`live_field`) the interpolated field, its planes further apart
+// (bmode_live_params: the interpolated field is nearly independent over two lattice steps, so fewer
+// planes serve).
+KERNEL_FN vec2 bmode_elevation_sum(vec3 p, vec3 z, bool live_field BMODE_K)
 {
     BMODE_PRECISE vec2 sum = vec2(0.0f);
     const vec3 inverse = vec3(k.lattice_inverse);
@@ -175,7 +236,7 @@ KERNEL_FN vec2 bmode_elevation_sum(vec3 p, vec3 z BMODE_K)
         const vec4 plane = k.elevation[e];
         BMODE_PRECISE vec3 off = z * plane.x;
         BMODE_PRECISE vec3 q = p + off;
-        BMODE_PRECISE vec2 s = bmode_scatterer(bmode_cell_hash(q, inverse, 17u)) * plane.y;
+        BMODE_PRECISE vec2 s = (live_field ? bmode_smooth_scatterer(q, inverse, 17u) : bmode_scatterer(bmode_cell_hash(q, inverse, 17u))) * plane.y;
         sum = sum + s;
     }
     return sum;
@@ -190,12 +251,13 @@ KERNEL_FN float bmode_texture(uint tissue, vec3 p BMODE_K)
     return 1.0f;
 }
 
-// Pass 1 for one pixel: the scattered field at p (world) of a pixel of `tissue`.
-KERNEL_FN vec2 bmode_scattered(vec3 p, vec3 z, uint tissue BMODE_K)
+// Pass 1 for one pixel: the scattered field at p (world) of a pixel of `tissue` (`live_field`: a live
+// frame's, bmode_elevation_sum).
+KERNEL_FN vec2 bmode_scattered(vec3 p, vec3 z, uint tissue, bool live_field BMODE_K)
 {
     float strength = bmode_at(k.scatter[tissue >> 2u], tissue);
     if (k.texture != 0u) strength *= bmode_texture(tissue, p BMODE_ARG);
-    BMODE_PRECISE vec2 f = bmode_elevation_sum(p, z BMODE_ARG) * strength;
+    BMODE_PRECISE vec2 f = bmode_elevation_sum(p, z, live_field BMODE_ARG) * strength;
     return f;
 }
 

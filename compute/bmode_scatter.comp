@@ -22,6 +22,6 @@ void main()
     uint t = voxel < 0 ? 0u : texelFetch(volume, voxel).r;
     t = t < k.tissue_count ? t : 0u;  // the host checked the codes; a stray one reads as gel
     const uint at = (f * k.rows + r) * k.columns + c;
-    field[at] = bmode_scattered(p, vec3(pose.z), t);
+    field[at] = bmode_scattered(p, vec3(pose.z), t, false);
     labels[at] = t;
 }

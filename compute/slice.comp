@@ -23,6 +23,7 @@ layout(std430, binding = SLICE_LABEL_OUT_BINDING) writeonly buffer LabelOut { ui
 layout(std430, binding = SLICE_DISPLAY_BINDING) writeonly buffer Display { uvec2 display[]; };
 layout(std140, binding = SLICE_FRAME_BINDING) uniform Frame { SliceFrame frame; };
 layout(binding = SLICE_ROWS_BINDING) uniform samplerBuffer post_rows;
+layout(binding = SLICE_GENERATED_BINDING) uniform usamplerBuffer generated;
 
 void main()
 {
@@ -66,7 +67,11 @@ void main()
         }
         vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
         float grey = 0.0;
-        if ((FLAGS & SLICE_PACKED) != 0u) {
+        if ((FLAGS & SLICE_GENERATED) != 0u) {
+            // the live image already shows what the pressed tissue does to the sound below it
+            grey = float(texelFetch(generated, int(r * ((s.columns + 3u) & ~3u) + c)).r);
+            m.y = 0.0;
+        } else if ((FLAGS & SLICE_PACKED) != 0u) {
             vec3 lo = clamp(floor(index), vec3(0.0), max(size - 2.0, vec3(0.0)));
             uvec3 at = uvec3(lo);
             uvec3 far_x = at + uvec3(min(1u, voxels.x - 1u), 0u, 0u);  // a volume one voxel wide has no far column

@@ -32,12 +32,14 @@ namespace echosim::kernels {
 #define SLICE_DISPLAY_BINDING 5    // uvec2 per run: displayed grey bytes, first pixel lowest; slice_words(columns) words a row
 #define SLICE_FRAME_BINDING 6      // uniform: SliceFrame
 #define SLICE_ROWS_BINDING 7       // texel buffer, RGBA32F: post_row(r) of each row (post_bindings.h), made by the host
+#define SLICE_GENERATED_BINDING 8  // texel buffer, R8UI: a generated image's grey bytes, rows of (columns + 3) / 4 words (read when SLICE_GENERATED)
 
 #define SLICE_WARPED 1u  // sample where the deform map says, not at the pixel's own depth
 #define SLICE_LABELS 2u  // also write the labels
 #define SLICE_GREY 4u    // also write the sliced grey levels
 #define SLICE_POST 8u    // the displayed bytes go through the post stage (else: the sliced grey, rounded)
 #define SLICE_PACKED 16u // the volume is RGBA8 texels of 2 x 2 neighbours in (y, z) (below); else R8 through the trilinear sampler
+#define SLICE_GENERATED 32u  // the grey levels are a live B-mode image's (bmode_live.comp), not the volume's: the post stage only, no deform gain
 #define SLICE_TAPS_SHIFT 8u  // with SLICE_WARPED: the map columns a run reads, slice_taps (4 bits from here)
 
 struct SliceParams {

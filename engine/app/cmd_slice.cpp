@@ -66,10 +66,12 @@ int run_slice(const SliceArgs& args)
         return fail("--press-mm " + std::to_string(args.press_mm) + ": must be in 0.." + std::to_string(session::Session::kMaxPressMm));
 
     session::SessionOptions options;
+    echo::Imaging imaging = echo::Imaging::interpolative;
     if (!read_model_option("slice", args.model, options.tissue)) return kExitBadInput;
     try {
         options.image = echo::plane_with_pixel(args.width_mm, args.depth_mm, args.pixel_mm);
         options.patient.which = echo::parse_case(args.case_name);
+        imaging = echo::parse_imaging(args.imaging);
     } catch (const std::invalid_argument& e) {
         return fail(e.what());
     }
@@ -88,6 +90,8 @@ int run_slice(const SliceArgs& args)
         return fail(e.what());
     }
     progress.finish();
+    if (imaging == echo::Imaging::generative && !volumes.labels)
+        return fail("--imaging generative: " + volumes.description + " has no tissue labels to synthesise from (give --labels)");
 
     session::Session session(options);
     session::SettleReport settle;  // none: resting on the skin
@@ -136,15 +140,17 @@ int run_slice(const SliceArgs& args)
     std::string device = "the CPU twin";
     std::uint32_t messages = 0;
     if (args.cpu) {
-        image = echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), options.image, frame, scanner, options.patient);
+        image = echo::render_echo_cpu(*volumes.volume, volumes.labels.get(), options.image, frame, scanner, options.patient, false, imaging);
     } else {
         std::shared_ptr<const std::atomic<std::uint32_t>> counter;
         {
             gpu::Context ctx(context_options(args.gpu));
             counter = ctx.validation_counter();
             gpu::CommandPool pool(ctx);
-            auto gpu_volume = std::make_shared<const image::EchoVolumeGpu>(pool, *volumes.volume, volumes.labels.get());
-            image::EchoImageGpu pipeline(ctx, gpu_volume, options.image, options.patient);
+            auto gpu_volume = std::make_shared<const image::EchoVolumeGpu>(
+                pool, *volumes.volume, volumes.labels.get(), image::GreyLayout::best,
+                imaging == echo::Imaging::generative ? image::LabelTexels::make : image::LabelTexels::none);
+            image::EchoImageGpu pipeline(ctx, gpu_volume, options.image, options.patient, image::DeformReads::best, imaging);
             pipeline.scanner() = scanner;
             image = pipeline.render(pool, frame);
             device = ctx.device_name();

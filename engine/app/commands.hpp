@@ -154,6 +154,7 @@ struct SliceArgs {
     double press_mm = -1;          // < 0: not pressed (unless --force)
     double force_n = -1;           // < 0: not asked
     bool cpu = false;
+    std::string imaging = "interpolative";  // echo::Imaging's name
     std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
     std::string case_name = "healthy";
     double width_mm = 40, depth_mm = 50, pixel_mm = 0.1;

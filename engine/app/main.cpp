@@ -184,6 +184,10 @@ int main(int argc, char** argv)
     slice_cmd->add_option("--force", slice.force_n, "press the probe until the tissue pushes back this hard [N]")
         ->check(finite_range(0.01, 1000.0));
     slice_cmd->add_flag("--cpu", slice.cpu, "run the CPU twin of the kernels instead of the GPU");
+    slice_cmd->add_option("--imaging", slice.imaging,
+                          "interpolative (slice the volume, deformed) or generative (synthesise the B-mode image of the labels' tissue where "
+                          "the pressed tissue rests; needs labels)")
+        ->check(CLI::IsMember({"interpolative", "generative"}));
     slice_cmd->add_option("--case", slice.case_name, "healthy, dvt-acute or dvt-chronic (the vessels' behaviour, and the default volume)");
     slice_cmd->add_option("--width-mm", slice.width_mm, "image width [mm]")->check(finite_range(1.0, 200.0));
     slice_cmd->add_option("--depth-mm", slice.depth_mm, "image depth [mm]")->check(finite_range(1.0, 300.0));

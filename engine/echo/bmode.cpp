@@ -47,6 +47,9 @@ constexpr std::array<Acoustics, kTissueCount> kAcoustics = {{
 }};
 constexpr float kSpecular = 40.0f;  // specular echo relative to a unit scatterer (about 20 dB over speckle)
 constexpr double kLattice = 0.1;    // scatterer lattice [mm]
+// the live frames' elevational planes' spacing [mm]: two lattice steps, over which the interpolated
+// field (bmode_smooth_scatterer) is as good as independent; 9 planes at the probe's 1.2 mm slice
+constexpr double kLiveElevationStepMm = 0.2;
 static_assert(kTissueCount <= BMODE_MAX_TISSUES, "the kernels' tissue tables hold BMODE_MAX_TISSUES codes");
 
 std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
@@ -64,9 +67,16 @@ void put(glm::vec4* table, std::size_t i, float value) { table[i / 4][int(i % 4)
 using glm::vec2;
 using glm::vec3;
 
-// The twin of the four kernels for one frame, the tissue of each pixel from `tissue_of(p)`.
-template <class TissueOf>
-BModeImage run_twin(const kernels::BModeParams& k, const kernels::BModePose& pose, TissueOf&& tissue_of)
+// What pass 1 takes of a pixel: where its tissue rests (world mm) and which tissue it is.
+struct PixelSource {
+    vec3 world;
+    std::uint32_t tissue;
+};
+
+// The twin of the four kernels for one frame, pass 1 (bmode_scatter.comp, or bmode_live.comp) from
+// `source_of(c, r)`, a PixelSource.
+template <class SourceOf>
+BModeImage run_twin(const kernels::BModeParams& k, const kernels::BModePose& pose, SourceOf&& source_of, bool live = false)
 {
     BModeImage img;
     img.width = k.columns;
@@ -75,14 +85,13 @@ BModeImage run_twin(const kernels::BModeParams& k, const kernels::BModePose& pos
     img.labels.resize(n);
     std::vector<vec2> field(n), axial(n);
 
-    // pass 1: scatter (bmode_scatter.comp)
+    // pass 1: scatter
     for (std::uint32_t r = 0; r < k.rows; ++r)
         for (std::uint32_t c = 0; c < k.columns; ++c) {
-            const vec3 p = kernels::bmode_pixel_world(pose, c, r, k.pixel_mm, k.width_mm);
-            std::uint32_t t = tissue_of(p);
-            t = t < k.tissue_count ? t : 0u;
+            const PixelSource source = source_of(c, r);
+            const std::uint32_t t = source.tissue < k.tissue_count ? source.tissue : 0u;
             const std::size_t at = r * w + c;
-            field[at] = kernels::bmode_scattered(p, vec3(pose.z), t, k);
+            field[at] = kernels::bmode_scattered(source.world, vec3(pose.z), t, live, k);
             img.labels[at] = std::uint8_t(t);
         }
     // pass 2: down each beam (bmode_beam.comp), into `beam`
@@ -222,16 +231,90 @@ kernels::BModePose bmode_pose(const Pose& probe)
 
 BModeImage synthesize(const Medium& medium, const Pose& pose, const ScanSpec& spec)
 {
-    return run_twin(bmode_params(spec), bmode_pose(pose), [&](const glm::vec3& p) { return std::uint32_t(medium.tissue_at(glm::dvec3(p))); });
+    const kernels::BModeParams k = bmode_params(spec);
+    const kernels::BModePose f = bmode_pose(pose);
+    return run_twin(k, f, [&](std::uint32_t c, std::uint32_t r) {
+        const vec3 p = kernels::bmode_pixel_world(f, c, r, k.pixel_mm, k.width_mm);
+        return PixelSource{p, std::uint32_t(medium.tissue_at(glm::dvec3(p)))};
+    });
 }
 
 BModeImage synthesize(const io::Volume& labels, const kernels::BModeParams& params, const Pose& pose)
 {
     const std::uint8_t* codes = labels.as<std::uint8_t>();
-    return run_twin(params, bmode_pose(pose), [&](const glm::vec3& p) {
+    const kernels::BModePose f = bmode_pose(pose);
+    return run_twin(params, f, [&](std::uint32_t c, std::uint32_t r) {
+        const vec3 p = kernels::bmode_pixel_world(f, c, r, params.pixel_mm, params.width_mm);
         const int voxel = kernels::bmode_voxel(p, params);
-        return voxel < 0 ? 0u : std::uint32_t(codes[voxel]);
+        return PixelSource{p, voxel < 0 ? 0u : std::uint32_t(codes[voxel])};
     });
+}
+
+kernels::BModeParams bmode_live_params(const ImagePlane& plane, ScanSpec spec)
+{
+    // the tables and the axial PSF go down the beam, a row a pixel; the lateral PSF across it
+    spec.width_mm = plane.width_mm;
+    spec.depth_mm = plane.depth_mm;
+    spec.pixel_mm = plane.pixel_y_mm();
+    kernels::BModeParams k = bmode_params(spec);
+    ScanSpec across = spec;
+    across.pixel_mm = plane.pixel_x_mm();
+    const kernels::BModeParams lateral = bmode_params(across);
+    k.lateral_radius = lateral.lateral_radius;
+    std::copy(std::begin(lateral.lateral), std::end(lateral.lateral), std::begin(k.lateral));
+    k.columns = plane.columns;
+    k.rows = plane.rows;
+    k.row_words = (k.columns + 3) / 4;
+    k.pixel_mm = float(plane.pixel_y_mm());
+    // the elevational planes of the interpolated field (bmode_live_elevation_sum), kLiveElevationStepMm apart
+    const double sigma_e = spec.elevational_fwhm_mm / 2.3548;
+    const int reach = int(std::ceil(1.5 * sigma_e / kLiveElevationStepMm));
+    if (2 * reach + 1 > BMODE_MAX_PLANES)
+        throw std::invalid_argument("ScanSpec.elevational_fwhm_mm: " + std::to_string(spec.elevational_fwhm_mm) + " mm needs " +
+                                    std::to_string(2 * reach + 1) + " planes, the kernels hold " + std::to_string(BMODE_MAX_PLANES));
+    k.planes = 0;
+    for (int e = -reach; e <= reach; ++e) {
+        const double z = e * kLiveElevationStepMm;
+        k.elevation[k.planes++] = glm::vec4(float(z), float(std::exp(-0.5 * z * z / (sigma_e * sigma_e))), 0.0f, 0.0f);
+    }
+    // log compression as the sweeps' (bmode_params): a unit scatterer field about 20 dB under white
+    float psf_gain = 0;
+    for (std::uint32_t a = 0; a <= 2 * k.axial_radius; ++a)
+        for (std::uint32_t l = 0; l <= 2 * k.lateral_radius; ++l) {
+            const float ta = kernels::bmode_axial_tap(a, k), tl = kernels::bmode_lateral_tap(l, k);
+            psf_gain += ta * ta * tl * tl;
+        }
+    k.reference = 10.0f * std::sqrt(psf_gain * float(k.planes));
+    return k;
+}
+
+BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams& params, const kernels::SliceParams& slice,
+                           const Pose& pressed, std::span<const float> map)
+{
+    if (labels.type != io::VoxelType::uint8) throw std::invalid_argument("the label volume's voxels are not uint8 tissue codes");
+    const bool warped = !map.empty();
+    if (warped && map.size() != std::size_t(slice.map_columns) * slice.rows * 2)
+        throw std::invalid_argument("synthesize_live: a deform map of " + std::to_string(map.size() / 2) + " entries, the plane needs " +
+                                    std::to_string(std::size_t(slice.map_columns) * slice.rows));
+    const std::uint8_t* codes = labels.as<std::uint8_t>();
+    const kernels::BModePose f = bmode_pose(pressed);
+    const auto entry = [&](std::uint32_t r, std::uint32_t column) {
+        const std::size_t at = (std::size_t(r) * slice.map_columns + column) * 2;
+        return vec2(map[at], map[at + 1]);
+    };
+    return run_twin(params, f, [&](std::uint32_t c, std::uint32_t r) {
+        float source_y = kernels::pixel_y(r, slice.pixel_y_mm);
+        if (warped) {
+            const kernels::MapTap t = kernels::map_tap(c, slice);
+            source_y = kernels::map_between(entry(r, t.left), entry(r, t.right), t.right_weight).x;
+        }
+        const float x = kernels::pixel_x(c, slice.pixel_x_mm, slice.width_mm);
+        const glm::vec3 index(slice.probe_to_index * glm::vec4(x, source_y, 0.0f, 1.0f));
+        const glm::ivec3 v(glm::floor(index + 0.5f));
+        const bool inside = v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < int(labels.size[0]) && v.y < int(labels.size[1]) && v.z < int(labels.size[2]);
+        const std::uint32_t t = inside ? codes[labels.index(std::size_t(v.x), std::size_t(v.y), std::size_t(v.z))] : 0u;
+        return PixelSource{kernels::bmode_live_world(f, x, source_y), t};
+    }, true);
 }
 
 BModeImage synthesize(const io::Volume& labels, const Pose& pose, const ScanSpec& spec)

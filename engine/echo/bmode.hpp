@@ -33,6 +33,8 @@
 #include "core/pose.hpp"
 #include "core/probe_spec.hpp"
 #include "bmode_bindings.h"
+#include "slice_bindings.h"
+#include "echo/echo_frame.hpp"
 #include "echo/phantom.hpp"
 #include "io/nrrd.hpp"
 
@@ -106,6 +108,20 @@ io::Volume voxelise_frames(const Medium& medium, std::span<const Pose> poses, co
 BModeImage synthesize(const io::Volume& labels, const Pose& probe, const ScanSpec& spec);
 // The same with the parameters made once (bmode_params(spec, labels)), for many frames.
 BModeImage synthesize(const io::Volume& labels, const kernels::BModeParams& params, const Pose& probe);
+
+// Live frames (generative imaging): the B-mode model run on each frame of the echographic image,
+// its tissue looked up where it rests. The parameters for a live image `plane` (its rows and
+// columns may be pixels of two sizes: the axial tables by the rows', the lateral PSF by the
+// columns'); the rest of the scanner's settings from `spec` (its width, depth and pixel unused).
+kernels::BModeParams bmode_live_params(const ImagePlane& plane, ScanSpec spec = {});
+// The twin of a live frame's kernels (compute/bmode_live.comp, then the sweep's passes 2 to 4): the
+// image of the probe pressed at `pressed` whose pixels show the tissue resting where the deform map
+// `map` (deform_bindings.h: source y [mm], gain [dB] a pair, slice.map_columns x rows pairs; empty
+// when nothing is pressed) puts it, `slice` the frame's slice parameters (echo::make_kernel_params:
+// the plane, the map's geometry, the pressed probe to `labels`' voxels). Throws
+// std::invalid_argument for labels that are not uint8 or a map of the wrong size.
+BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams& params, const kernels::SliceParams& slice,
+                           const Pose& pressed, std::span<const float> map);
 
 // The phantom as a medium.
 class PhantomMedium : public Medium {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -41,6 +42,15 @@ ImagePlane plane_with_pixel(double width_mm, double depth_mm, double pixel_mm);
 // y = (r + 0.5) pixel_y_mm along the beam); the third column is the elevational axis, of unit
 // length (scale it by a slice's thickness).
 glm::dmat4 pixel_to_world(const ImagePlane& plane, const Pose& face);
+
+// How the echographic image is made: sliced from the case's reconstructed volume, the slice
+// deformed by the pressed tissue (interpolative, paper §6); or synthesised on each frame from the
+// case's anatomy where the pressed tissue rests (generative: the B-mode model, echo/bmode.hpp,
+// synthesize_live), its speckle attached to the tissue.
+enum class Imaging { interpolative, generative };
+const char* imaging_name(Imaging imaging);
+// "interpolative" or "generative"; throws std::invalid_argument naming the value otherwise.
+Imaging parse_imaging(const std::string& name);
 
 // The scanner's controls.
 struct ScannerSettings {

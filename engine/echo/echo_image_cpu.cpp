@@ -1,9 +1,11 @@
 #include "echo/echo_image_cpu.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "echo/bmode.hpp"
 #include "echo/deform_cpu.hpp"
 #include "echo/kernel_params.hpp"
 #include "echo/post_cpu.hpp"
@@ -28,9 +30,11 @@ void check_volumes(const io::Volume& volume, const io::Volume* labels)
 }
 
 EchoImage render_echo_cpu(const io::Volume& volume, const io::Volume* labels, const ImagePlane& plane, const EchoFrame& frame,
-                          const ScannerSettings& scanner, const PatientCase& patient, bool want_labels)
+                          const ScannerSettings& scanner, const PatientCase& patient, bool want_labels, Imaging imaging)
 {
     check_volumes(volume, labels);
+    if (imaging == Imaging::generative && !labels)
+        throw std::invalid_argument("generative imaging needs the case's tissue labels, and this volume has none");
     KernelParams k = make_kernel_params(volume, plane, frame, scanner, patient, labels != nullptr);
     if (want_labels && labels) k.slice.flags |= SLICE_LABELS;
     EchoImage out;
@@ -44,6 +48,12 @@ EchoImage render_echo_cpu(const io::Volume& volume, const io::Volume* labels, co
         for (std::size_t i = 0; i < map.size(); ++i) out.map[2 * i] = map[i].x, out.map[2 * i + 1] = map[i].y;
     }
     SliceOutput sliced = slice_stage_cpu(volume, labels, out.map, k.slice);
+    if (imaging == Imaging::generative) {
+        // the live image in the slice's place, through the same post stage (the GPU's SLICE_GENERATED)
+        const BModeImage live = synthesize_live(*labels, bmode_live_params(plane), k.slice, frame.face, out.map);
+        for (std::size_t i = 0; i < sliced.grey.size(); ++i) sliced.grey[i] = float(live.pixels[i]);
+        std::fill(sliced.gain.begin(), sliced.gain.end(), 0.0f);
+    }
     out.rgba = post_cpu(sliced.grey, sliced.gain, k.post);
     out.grey = std::move(sliced.grey);
     out.labels = std::move(sliced.labels);

@@ -23,6 +23,15 @@ void check_plane(const ImagePlane& p)
         bad("size", std::to_string(p.columns) + "x" + std::to_string(p.rows) + ": more than 7680x4320 pixels");
 }
 
+const char* imaging_name(Imaging imaging) { return imaging == Imaging::generative ? "generative" : "interpolative"; }
+
+Imaging parse_imaging(const std::string& name)
+{
+    if (name == "interpolative") return Imaging::interpolative;
+    if (name == "generative") return Imaging::generative;
+    throw std::invalid_argument("imaging \"" + name + "\": must be interpolative or generative");
+}
+
 ImagePlane plane_with_pixel(double width_mm, double depth_mm, double pixel_mm)
 {
     if (!(pixel_mm > 0)) throw std::invalid_argument("image pixel " + std::to_string(pixel_mm) + " mm: must be > 0");

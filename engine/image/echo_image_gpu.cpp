@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "echo/bmode.hpp"
 #include "echo/echo_image_cpu.hpp"
 #include "echosim_compute_shaders.hpp"
 
@@ -72,12 +73,13 @@ std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
 // The frame's stages as a list of sub-passes that declare what they read and write
 // (gpu/stage_list.hpp), so the barriers between them are the recorder's, not each stage's:
 //
-//   deform: solve ─▶ deform: map ─▶ slice+post ─▶ display copy ─▶ [read-back copy]
+//   deform: solve ─▶ deform: map ─▶ [B-mode: live scatter ─▶ beam ─▶ axial ─▶ lateral] ─▶ slice+post ─▶ display copy ─▶ [read-back copy]
 //
-// The resources are a slot's (each frame slot has its own); the profile, the parameters and the
-// rows are host-written before the frame is submitted, so no stage declares them.
-enum Resource { kSolved, kMap, kSliced, kImage, kReadback };
-enum StageIndex { kSolve, kMapStage, kSlice, kDisplayCopy, kReadbackCopy };
+// (the B-mode stages with generative imaging only). The resources are a slot's (each frame slot has
+// its own); the profile, the parameters and the rows are host-written before the frame is
+// submitted, so no stage declares them.
+enum Resource { kSolved, kMap, kSliced, kImage, kReadback, kFieldA, kCodes, kBeamB, kGenerated };
+enum StageIndex { kSolve, kMapStage, kLiveScatter, kBeam, kAxial, kLateral, kSlice, kDisplayCopy, kReadbackCopy };
 
 gpu::StageList frame_stages(std::uint32_t map_reads)
 {
@@ -85,12 +87,19 @@ gpu::StageList frame_stages(std::uint32_t map_reads)
     constexpr auto storage_write = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
     // the deform's map pass reads the solve's outputs through texel views (a CPU device) or as storage
     const VkAccessFlags2 solved_read = map_reads != 0u ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    constexpr auto texel_read = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
     return gpu::StageList(
         {{"the deform's solution (scratch, displacements, wall distances)"}, {"the deform map"},
-         {"the sliced bytes, grey levels and labels"}, {"the displayed image", true}, {"the read-back buffer"}},
+         {"the sliced bytes, grey levels and labels"}, {"the displayed image", true}, {"the read-back buffer"},
+         {"the B-mode field (buffer A)"}, {"the live frame's tissue codes"}, {"the B-mode field down the beam (buffer B)"},
+         {"the generated grey and tissue bytes"}},
         {{"deform: solve", {}, {{kSolved, compute, storage_write}}},
          {"deform: map", {{kSolved, compute, solved_read}}, {{kMap, compute, storage_write}}},
-         {"slice+post", {{kMap, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT}}, {{kSliced, compute, storage_write}}},
+         {"B-mode: live scatter", {{kMap, compute, texel_read}}, {{kFieldA, compute, storage_write}, {kCodes, compute, storage_write}}},
+         {"B-mode: beam", {{kFieldA, compute, texel_read}, {kCodes, compute, texel_read}}, {{kBeamB, compute, storage_write}}},
+         {"B-mode: axial", {{kBeamB, compute, texel_read}}, {{kFieldA, compute, storage_write}}},
+         {"B-mode: lateral", {{kFieldA, compute, texel_read}, {kCodes, compute, texel_read}}, {{kGenerated, compute, storage_write}}},
+         {"slice+post", {{kMap, compute, texel_read}, {kGenerated, compute, texel_read}}, {{kSliced, compute, storage_write}}},
          {"display copy", {{kSliced, copy, VK_ACCESS_2_TRANSFER_READ_BIT}},
           {{kImage, copy, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, true}}},
          {"read-back copy", {{kImage, copy, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL}},
@@ -103,9 +112,27 @@ std::span<const std::byte> bytes_of(const T& value)
     return std::as_bytes(std::span(&value, 1));
 }
 
+// The B-mode kernels' one layout (bmode_bindings.h): the sweep's bindings, then the live frame's.
+static_assert(BMODE_PARAMS_BINDING == 0 && BMODE_FRAMES_BINDING == 1 && BMODE_VOLUME_BINDING == 2 && BMODE_FIELD_BINDING == 3 &&
+                  BMODE_LABELS_BINDING == 4 && BMODE_BEAM_BINDING == 5 && BMODE_BEAM_TEXELS_BINDING == 6 && BMODE_GREY_BINDING == 7 &&
+                  BMODE_LABEL_OUT_BINDING == 8 && BMODE_ENVELOPE_BINDING == 9 && BMODE_FIELD_TEXELS_BINDING == 10 &&
+                  BMODE_LABEL_TEXELS_BINDING == 11 && BMODE_LIVE_FRAME_BINDING == 12 && BMODE_LIVE_MAP_BINDING == 13,
+              "B-mode bindings in the order declared below");
+using gpu::BindingKind;
+constexpr BindingKind kBModeBindings[] = {
+    BindingKind::uniform_buffer, BindingKind::uniform_buffer, BindingKind::texel_buffer,   BindingKind::storage_buffer,
+    BindingKind::storage_buffer, BindingKind::storage_buffer, BindingKind::texel_buffer,   BindingKind::storage_buffer,
+    BindingKind::storage_buffer, BindingKind::storage_buffer, BindingKind::texel_buffer,   BindingKind::texel_buffer,
+    BindingKind::uniform_buffer, BindingKind::texel_buffer};
+std::unique_ptr<gpu::ComputeKernel> bmode_kernel(const gpu::Context& ctx, std::span<const std::uint32_t> spirv, const char* name)
+{
+    return std::make_unique<gpu::ComputeKernel>(ctx, spirv, name, kBModeBindings, 0);
+}
+
 }  // namespace
 
-EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels, GreyLayout layout)
+EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels, GreyLayout layout,
+                             LabelTexels label_texels)
     : labelled_(labels != nullptr),
       linear_(pool.context(), gpu::Filter::linear),
       nearest_(pool.context(), gpu::Filter::nearest)
@@ -132,6 +159,14 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
     } else {
         grey_ = volume_image(pool, extent_of(volume), VK_FORMAT_R8_UNORM, std::as_bytes(std::span(volume.data)));
     }
+    if (labels && label_texels == LabelTexels::make) {
+        const std::uint64_t limit = pool.context().limits().maxTexelBufferElements;
+        if (labels->voxel_count() > limit)
+            throw std::invalid_argument("labels of " + std::to_string(labels->voxel_count()) + " voxels: more than this device's texel buffers hold (" +
+                                        std::to_string(limit) + "), which generative imaging reads them from");
+        label_buffer_ = gpu::upload_buffer(pool, std::as_bytes(std::span(labels->data)), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+        label_texels_ = gpu::TexelView(pool.context(), label_buffer_, VK_FORMAT_R8_UINT, "the labels as texels");
+    }
     if (labels) {
         labels_ = volume_image(pool, extent_of(*labels), VK_FORMAT_R8_UINT, std::as_bytes(std::span(labels->data)));
     } else {
@@ -141,8 +176,9 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
 }
 
 EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
-                           const echo::PatientCase& patient, DeformReads reads)
-    : volume_(std::move(volume)),
+                           const echo::PatientCase& patient, DeformReads reads, echo::Imaging imaging)
+    : imaging_(imaging),
+      volume_(std::move(volume)),
       plane_(plane),
       patient_(patient),
       max_steps_((echo::check_plane(plane), echo::deform_max_steps(volume_->grid(), plane))),
@@ -161,20 +197,35 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
       slice_(ctx, kernels::slice_comp, "slice.comp",
              {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::texel_buffer,
               gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
-              gpu::BindingKind::uniform_buffer, gpu::BindingKind::texel_buffer},
+              gpu::BindingKind::uniform_buffer, gpu::BindingKind::texel_buffer, gpu::BindingKind::texel_buffer},
              0)
 {
+    const bool generative = imaging_ == echo::Imaging::generative;
+    if (generative && !volume_->labelled())
+        throw std::invalid_argument("generative imaging needs the case's tissue labels, and this volume has none");
+    if (generative && !volume_->has_label_texels())
+        throw std::invalid_argument("generative imaging reads the labels as texels: make the volume with LabelTexels::make");
     static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
                       DEFORM_MAP_BINDING == 4 && DEFORM_MOVED_BINDING == 5 && DEFORM_WALLS_BINDING == 6 &&
                       DEFORM_SCRATCH_TEXELS_BINDING == 7 && DEFORM_MOVED_TEXELS_BINDING == 8 && DEFORM_WALLS_TEXELS_BINDING == 9,
                   "deform bindings in the order declared above");
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
-                      SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7,
+                      SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7 &&
+                      SLICE_GENERATED_BINDING == 8,
                   "slice bindings in the order declared above");
     // the live frames' variants, pressed and not, made now rather than at the first frame of each
-    const std::uint32_t live = SLICE_POST | (volume_->packed() ? SLICE_PACKED : 0u);
+    const std::uint32_t live = SLICE_POST | (generative ? SLICE_GENERATED : volume_->packed() ? SLICE_PACKED : 0u);
     slice_.prepare(live);
     slice_.prepare(live | kernels::slice_warped_flags(echo::map_step(map_columns_, plane_)));
+    if (generative) {
+        live_ = bmode_kernel(ctx, kernels::bmode_live_comp, "bmode_live.comp");
+        beam_ = bmode_kernel(ctx, kernels::bmode_beam_comp, "bmode_beam.comp");
+        axial_ = bmode_kernel(ctx, kernels::bmode_axial_comp, "bmode_axial.comp");
+        lateral_ = bmode_kernel(ctx, kernels::bmode_lateral_comp, "bmode_lateral.comp");
+        const kernels::BModeParams params = echo::bmode_live_params(plane_);
+        bmode_params_ = gpu::Buffer(ctx, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
+        bmode_params_.write(bytes_of(params));
+    }
     deform_.prepare(DEFORM_SOLVE);
     deform_.prepare(DEFORM_MAP | map_reads_);
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
@@ -217,9 +268,32 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map),
                          gpu::Binding::storage(slot.moved), gpu::Binding::storage(slot.walls), gpu::Binding::texel(slot.scratch_texels),
                          gpu::Binding::texel(slot.moved_texels), gpu::Binding::texel(slot.walls_texels)});
+        // the generated grey bytes, rows of whole words as the lateral pass packs them (a stand-in of one word without)
+        const VkDeviceSize generated_bytes = generative ? VkDeviceSize((plane_.columns + 3) / 4) * 4 * plane_.rows : 4;
+        slot.generated = gpu::Buffer(ctx, generated_bytes, storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, gpu::MemoryUse::device_local);
+        slot.generated_texels = gpu::TexelView(ctx, slot.generated, VK_FORMAT_R8_UINT, "the generated image's grey bytes");
         slice_.bind(s, {gpu::Binding::sampled(volume_->grey(), volume_->linear()), gpu::Binding::sampled(volume_->labels(), volume_->nearest()),
                         gpu::Binding::texel(slot.map_texels), gpu::Binding::storage(slot.grey), gpu::Binding::storage(slot.labels),
-                        gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params), gpu::Binding::texel(slot.row_texels)});
+                        gpu::Binding::storage(slot.display), gpu::Binding::uniform(slot.params), gpu::Binding::texel(slot.row_texels),
+                        gpu::Binding::texel(slot.generated_texels)});
+        if (!generative) continue;
+        slot.live = gpu::Buffer(ctx, sizeof(kernels::BModeLiveFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
+        slot.field = gpu::Buffer(ctx, pixels * 8, storage_and_texels, gpu::MemoryUse::device_local);
+        slot.codes = gpu::Buffer(ctx, pixels * 4, storage_and_texels, gpu::MemoryUse::device_local);
+        slot.beam = gpu::Buffer(ctx, pixels * 8, storage_and_texels, gpu::MemoryUse::device_local);
+        slot.generated_codes = gpu::Buffer(ctx, generated_bytes, storage, gpu::MemoryUse::device_local);
+        slot.field_texels = gpu::TexelView(ctx, slot.field, VK_FORMAT_R32G32_SFLOAT, "the B-mode field (buffer A)");
+        slot.code_texels = gpu::TexelView(ctx, slot.codes, VK_FORMAT_R32_UINT, "the live frame's tissue codes");
+        slot.beam_texels = gpu::TexelView(ctx, slot.beam, VK_FORMAT_R32G32_SFLOAT, "the B-mode field down the beam (buffer B)");
+        // bindings 1 and 9 (the sweep's poses and envelope) no live pass reads: stand-ins of their kinds
+        const gpu::Binding bmode[] = {gpu::Binding::uniform(bmode_params_), gpu::Binding::uniform(slot.live),
+                                gpu::Binding::texel(volume_->label_texels()), gpu::Binding::storage(slot.field),
+                                gpu::Binding::storage(slot.codes),          gpu::Binding::storage(slot.beam),
+                                gpu::Binding::texel(slot.beam_texels),      gpu::Binding::storage(slot.generated),
+                                gpu::Binding::storage(slot.generated_codes), gpu::Binding::storage(slot.generated_codes),
+                                gpu::Binding::texel(slot.field_texels),     gpu::Binding::texel(slot.code_texels),
+                                gpu::Binding::uniform(slot.live),           gpu::Binding::texel(slot.map_texels)};
+        for (gpu::ComputeKernel* k : {live_.get(), beam_.get(), axial_.get(), lateral_.get()}) k->bind(s, bmode);
     }
 }
 
@@ -249,11 +323,20 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     auto* rows = static_cast<kernels::PostRow*>(slot.rows.mapped());
     for (std::uint32_t r = 0; r < plane_.rows; ++r) rows[r] = kernels::post_row(r, k.post);
 
+    const bool generative = imaging_ == echo::Imaging::generative;
+    if (generative) {
+        k.slice.flags |= SLICE_GENERATED;
+        k.slice.flags &= ~std::uint32_t(SLICE_PACKED);
+        const kernels::BModeLiveFrame live{echo::bmode_pose(frame.face), k.slice};
+        slot.live.write(bytes_of(live));
+    }
     std::uint32_t active = 0;
     if (warped && stages != Stages::slice_only) active |= 1u << kSolve | 1u << kMapStage;
     if (stages != Stages::deform_only) active |= 1u << kSlice;
+    if (generative && stages != Stages::deform_only) active |= 1u << kLiveScatter | 1u << kBeam | 1u << kAxial | 1u << kLateral;
     if (all) active |= 1u << kDisplayCopy | (readback_enabled_ ? 1u << kReadbackCopy : 0u);
-    const std::array<VkImage, 5> images{VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, slot.image.handle(), VK_NULL_HANDLE};
+    std::array<VkImage, kGenerated + 1> images{};
+    images[kImage] = slot.image.handle();
     // the displayed image handed on to its reader: the panel's fragment shader, or a copy
     const bool to_transfer = final_layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     const gpu::StageAccess reader{kImage, to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
@@ -267,6 +350,20 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
             break;
         case kMapStage:  // ...then mapped with their neighbours' solutions
             deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP | map_reads_);
+            break;
+        case kLiveScatter:
+            live_->record(cmd, slot_index, {}, gpu::Groups::cover(VkExtent2D{plane_.columns, plane_.rows}, VkExtent2D{BMODE_SCATTER_GROUP_X, BMODE_SCATTER_GROUP_Y}));
+            break;
+        case kBeam:
+            beam_->record(cmd, slot_index, {}, gpu::Groups::cover(VkExtent2D{plane_.columns, 1}, VkExtent2D{BMODE_BEAM_GROUP, 1}));
+            break;
+        case kAxial:
+            axial_->record(cmd, slot_index, {},
+                           gpu::Groups::cover(VkExtent2D{plane_.columns, (plane_.rows + 3) / 4}, VkExtent2D{BMODE_AXIAL_GROUP_X, BMODE_AXIAL_GROUP_Y}));
+            break;
+        case kLateral:
+            lateral_->record(cmd, slot_index, {},
+                             gpu::Groups::cover(VkExtent2D{(plane_.columns + 3) / 4, plane_.rows}, VkExtent2D{BMODE_LATERAL_GROUP_X, BMODE_LATERAL_GROUP_Y}));
             break;
         case kSlice: {
             const VkExtent2D runs{kernels::slice_runs(plane_.columns), plane_.rows};

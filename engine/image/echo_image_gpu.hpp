@@ -58,15 +58,21 @@ namespace echosim::image {
 // budget, else R8), or one of the two whatever the device (tests run both against the CPU twin).
 enum class GreyLayout { best, sampler, packed };
 
+// Whether the labels are also held as a texel buffer (x fastest), which generative imaging reads.
+enum class LabelTexels { none, make };
+
 class EchoVolumeGpu {
 public:
-    EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels, GreyLayout layout = GreyLayout::best);
+    EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, const io::Volume* labels, GreyLayout layout = GreyLayout::best,
+                  LabelTexels label_texels = LabelTexels::none);
 
     const io::Volume& grid() const { return grid_; }  // the geometry (no voxels)
     bool labelled() const { return labelled_; }
     bool packed() const { return packed_; }  // grey() holds packed neighbours (RGBA8), not R8
     const gpu::Image& grey() const { return grey_; }
     const gpu::Image& labels() const { return labels_; }
+    bool has_label_texels() const { return label_buffer_.size() > 0; }
+    const gpu::TexelView& label_texels() const { return label_texels_; }  // with LabelTexels::make
     const gpu::Sampler& linear() const { return linear_; }
     const gpu::Sampler& nearest() const { return nearest_; }
 
@@ -75,6 +81,8 @@ private:
     bool labelled_ = false;
     bool packed_ = false;
     gpu::Image grey_, labels_;
+    gpu::Buffer label_buffer_;
+    gpu::TexelView label_texels_;
     gpu::Sampler linear_, nearest_;
 };
 
@@ -90,12 +98,24 @@ enum class Stages { all, slice_only, deform_only };
 // two whatever the device (tests run both against the CPU twin).
 enum class DeformReads { best, storage, texels };
 
+// Generative imaging (echo::Imaging::generative) puts the B-mode model's passes between the deform
+// and the post stage: the deform map says where each pixel's tissue rests, bmode_live.comp takes the
+// tissue (the volume's labels) and the scatterers there, the sweep's beam, axial and lateral passes
+// (bmode_bindings.h) make the image, and the slice kernel's post stage (SLICE_GENERATED) gives it the
+// scanner's gain, TGC, dynamic range and markers as it gives the sliced one:
+//
+//   deform: solve ─▶ deform: map ─▶ B-mode: live scatter ─▶ beam ─▶ axial ─▶ lateral ─▶ slice+post ─▶ display copy
+//
+// The volume must be labelled; its grey levels are not read. The B-mode model's settings are
+// echo::ScanSpec's defaults (the probe's), at the plane's pixels (echo::bmode_live_params).
 class EchoImageGpu {
 public:
     EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
-                 const echo::PatientCase& patient, DeformReads reads = DeformReads::best);
+                 const echo::PatientCase& patient, DeformReads reads = DeformReads::best,
+                 echo::Imaging imaging = echo::Imaging::interpolative);
 
     const echo::ImagePlane& plane() const { return plane_; }
+    echo::Imaging imaging() const { return imaging_; }
     const io::Volume& volume_grid() const { return volume_->grid(); }  // the volume's geometry (no voxels)
     echo::ScannerSettings& scanner() { return scanner_; }
 
@@ -134,7 +154,12 @@ private:
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
         gpu::Buffer readback;  // host-visible, with enable_readback()
+        // generative imaging's (bmode_bindings.h): the live frame, buffers A and B, the codes, the
+        // generated grey and tissue bytes; interpolative imaging: only `generated`, a stand-in
+        gpu::Buffer live, field, codes, beam, generated, generated_codes;
+        gpu::TexelView field_texels, code_texels, beam_texels, generated_texels;
     };
+    echo::Imaging imaging_;
     std::shared_ptr<const EchoVolumeGpu> volume_;
     echo::ImagePlane plane_;
     echo::PatientCase patient_;
@@ -145,9 +170,11 @@ private:
     gpu::StageList stages_;          // the frame's stages and what each reads and writes (echo_image_gpu.cpp)
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
+    gpu::Buffer bmode_params_;  // uniform, written once (generative imaging)
     std::array<Slot, gpu::kFramesInFlight> slots_;
     // last, so destroyed first: they wait for the device before the resources they bind go
     gpu::ComputeKernel deform_, slice_;
+    std::unique_ptr<gpu::ComputeKernel> live_, beam_, axial_, lateral_;  // generative imaging's
 };
 
 }  // namespace echosim::image

@@ -19,20 +19,13 @@
 #include "echo/echo_image_cpu.hpp"
 #include "echo/echo_test_volumes.hpp"
 #include "session/session.hpp"
+#include "image/fraction_close.hpp"
 #include "test_gpu.hpp"
 
 namespace echosim::image {
 namespace {
 
-template <class A, class B, class Close>
-double fraction_close(const std::vector<A>& a, const std::vector<B>& b, Close close)
-{
-    EXPECT_EQ(a.size(), b.size());
-    if (a.size() != b.size() || a.empty()) return 0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) n += close(a[i], b[i]);
-    return double(n) / double(a.size());
-}
+using test::fraction_close;
 
 void expect_twins(const echo::EchoImage& gpu, const echo::EchoImage& cpu, const char* what)
 {
