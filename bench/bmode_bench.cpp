@@ -4,7 +4,14 @@
 // on the CPU twin (all cores), on lavapipe, and on a GPU when one is present. Each iteration images
 // one batch of frames down the thigh, as `echosim phantom` does: for the GPU one submit of the three
 // passes over the batch, waited for, the grey levels and tissue codes copied out. Rows: width,
-// height, backend, mode (sweep; the live generative mode is not built yet), fps.
+// height, backend, mode, fps.
+//
+// Mode "sweep": as above. Modes "live" and "interpolative": one frame of the echographic image
+// (image::EchoImageGpu, recorded and waited for) pressed 5 mm over the femoral vessels, the deform
+// stage running each frame: "live" synthesises it from the labels where the pressed tissue rests
+// (generative imaging), "interpolative" slices the volume where the same map says (the slice's cost
+// does not depend on the grey levels, which are blank here). Labels voxelised at 0.2 mm over the
+// frame from 10 mm above the face.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -17,6 +24,7 @@
 #include "echo/sweep.hpp"
 #include "gpu/command_pool.hpp"
 #include "image/bmode_gpu.hpp"
+#include "image/echo_image_gpu.hpp"
 #include "scene/leg.hpp"
 
 namespace echosim::bench {
@@ -35,11 +43,41 @@ struct Device {
     Device(std::string n, const gpu::ContextOptions& o) : name(std::move(n)), ctx(o) {}
 };
 
+struct LiveScene {
+    echo::ImagePlane plane;
+    io::Volume grey, labels;
+    echo::EchoFrame frame;
+};
+
 struct BmodeFixture {
     scene::LegModel leg;
     std::unique_ptr<echo::Phantom> phantom;
     std::map<std::uint32_t, BmodeScene> scenes;  // by width
+    std::map<std::uint32_t, LiveScene> live_scenes;  // by width
     std::unique_ptr<Device> lavapipe, gpu;
+
+    const LiveScene& live_scene(std::uint32_t width, std::uint32_t height)
+    {
+        auto it = live_scenes.find(width);
+        if (it != live_scenes.end()) return it->second;
+        if (!phantom) phantom = std::make_unique<echo::Phantom>(leg, echo::Case::dvt_acute);
+        constexpr double kPressMm = 5, kAboveMm = 10;
+        LiveScene s;
+        s.plane = echo::ImagePlane{width * 0.1, height * 0.1, width, height};
+        const Pose rest = leg.probe_rest_pose(0.5f, 0.5f);
+        echo::ScanSpec spec;
+        spec.width_mm = s.plane.width_mm;
+        spec.depth_mm = s.plane.depth_mm + kAboveMm;
+        const Pose above = pressed_along_beam(rest, -kAboveMm);
+        s.labels = echo::voxelise_frames(echo::PhantomMedium(*phantom), std::span(&above, 1), spec);
+        s.grey = io::make_volume(s.labels.size, io::VoxelType::uint8);
+        s.grey.directions = s.labels.directions;
+        s.grey.origin = s.labels.origin;
+        s.frame.face = pressed_along_beam(rest, kPressMm);
+        s.frame.columns.assign(width, echo::ColumnProfile{float(-kPressMm), float(kPressMm)});
+        s.frame.skin_pressure_kpa = 10;
+        return live_scenes.emplace(width, std::move(s)).first->second;
+    }
 
     const BmodeScene& scene(std::uint32_t width, std::uint32_t height)
     {
@@ -78,6 +116,27 @@ void frames(benchmark::State& state, const BmodeScene& s, echo::SweepImager& ima
     state.counters["batch"] = double(n);
     state.counters["fps"] = benchmark::Counter(double(state.iterations() * n), benchmark::Counter::kIsRate);
     state.SetLabel("backend=" + backend + " mode=sweep");
+}
+
+// Frames of the echographic image, each recorded and waited for, the heart's phase moving on.
+void live_frames(benchmark::State& state, Device& d, const LiveScene& s, echo::Imaging imaging)
+{
+    gpu::CommandPool pool(d.ctx);  // this thread's
+    const bool generative = imaging == echo::Imaging::generative;
+    const auto volume = std::make_shared<const image::EchoVolumeGpu>(pool, s.grey, &s.labels, image::GreyLayout::best,
+                                                                    generative ? image::LabelTexels::make : image::LabelTexels::none);
+    image::EchoImageGpu pipeline(d.ctx, volume, s.plane, echo::PatientCase{}, image::DeformReads::best, imaging);
+    echo::EchoFrame frame = s.frame;
+    const auto one = [&] {
+        frame.time_s += 1.0 / 60;
+        pool.submit_and_wait([&](VkCommandBuffer cmd) { pipeline.record(cmd, 0, frame, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL); });
+    };
+    one();  // warm-up
+    for (auto _ : state) one();
+    state.counters["width"] = s.plane.columns;
+    state.counters["height"] = s.plane.rows;
+    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+    state.SetLabel("backend=" + (d.name == "gpu" ? d.ctx.device_name() : d.name) + " mode=" + (generative ? "live" : "interpolative"));
 }
 
 std::unique_ptr<Device> open_device(const char* name, const gpu::ContextOptions& o)
@@ -120,6 +179,11 @@ std::shared_ptr<void> register_bmode(const SuiteOptions& options)
                     image::BModeGpu imager(pool, *scene.labels, scene.spec);
                     frames(s, scene, imager, d->name == "gpu" ? d->ctx.device_name() : d->name);
                 });
+        for (Device* d : {f->lavapipe.get(), f->gpu.get()})
+            if (d)
+                for (const echo::Imaging imaging : {echo::Imaging::generative, echo::Imaging::interpolative})
+                    add("bmode/" + d->name + "/" + size + "/" + (imaging == echo::Imaging::generative ? "live" : "interpolative"),
+                        [f, d, w = w, h = h, imaging](benchmark::State& s) { live_frames(s, *d, f->live_scene(w, h), imaging); });
         add("bmode/cpu/" + size, [f, w = w, h = h](benchmark::State& s) {
             const BmodeScene& scene = f->scene(w, h);
             echo::CpuSweepImager imager(scene.labels, scene.spec);

@@ -49,7 +49,7 @@ constexpr float kSpecular = 40.0f;  // specular echo relative to a unit scattere
 constexpr double kLattice = 0.1;    // scatterer lattice [mm]
 // the live frames' elevational planes' spacing [mm]: two lattice steps, over which the interpolated
 // field (bmode_smooth_scatterer) is as good as independent; 9 planes at the probe's 1.2 mm slice
-constexpr double kLiveElevationStepMm = 0.2;
+constexpr double kLiveElevationStepMm = 0.1;
 static_assert(kTissueCount <= BMODE_MAX_TISSUES, "the kernels' tissue tables hold BMODE_MAX_TISSUES codes");
 
 std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
