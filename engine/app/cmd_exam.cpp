@@ -55,8 +55,10 @@ int run_exam(const ExamArgs& args)
     const StopSignals stop;
     ExamRunResult r;
     try {
-        r = perform_exam(exam, volumes, {.frames_per_s = args.frames_per_s, .out = args.out, .gpu = context_options(args.gpu),
-                                         .trainee = args.trainee, .stop = &stop});
+        ExamRunOptions o{.frames_per_s = args.frames_per_s, .out = args.out, .gpu = context_options(args.gpu), .trainee = args.trainee,
+                         .stop = &stop};
+        if (!args.imaging.empty()) o.imaging = echo::parse_imaging(args.imaging);
+        r = perform_exam(exam, volumes, o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: %s\n", me, e.what());
         return kExitFailure;

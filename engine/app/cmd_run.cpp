@@ -233,6 +233,8 @@ int run_window(const RunArgs& args)
     try {
         if (args.volume.empty() && !args.labels.empty())
             throw std::invalid_argument("--labels " + args.labels.string() + ": give the --volume they label");
+        if (args.imaging == "generative" && !args.volume.empty() && args.labels.empty())
+            throw std::invalid_argument("--imaging generative: synthesises the image from tissue labels; give --labels for " + args.volume.string());
         // the trainer (app/trainer_window.hpp): the chosen case's exam volume, or the user's own
         trainer = std::make_unique<TrainerWindow>(args);
         volumes = trainer->load_volumes(context_options(args.gpu), progress);

@@ -82,6 +82,7 @@ struct RunArgs {
     std::filesystem::path volume;  // empty: the case's default volume (made once, cached)
     std::filesystem::path labels;  // with --volume: its tissue labels (empty: linear deformation)
     std::string case_name = "healthy";
+    std::string imaging;  // interpolative or generative; empty: as the case says
     std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
     std::string device = "mouse";      // mouse, spacemouse, openhaptics, simulated-arm or null
     std::filesystem::path trajectory;  // a scripted trajectory CSV instead of a device
@@ -227,6 +228,7 @@ struct ExamArgs {
     std::filesystem::path records;     // empty: the user's default database
     bool no_records = false;
     bool coarse = false;               // the case's volume at 0.6 mm (seconds to make): tests and benchmarks
+    std::string imaging;               // interpolative or generative; empty: as the scenario says
 };
 int run_exam(const ExamArgs& args);
 

@@ -70,6 +70,7 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
         o.session.window_follows_probe = true;
         o.volume = volumes.volume;
         o.labels = volumes.labels;
+        o.imaging = options.imaging ? options.imaging : exam.scenario.imaging;
         o.trajectory = exam.trajectory;
         o.trajectory_name = exam.trajectory_name;
         o.frames_per_s = options.frames_per_s;
@@ -85,6 +86,7 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
         result.frames = runner.frames();
         result.simulated_s = runner.session().time();
         result.validation_messages = messages ? messages->load() : 0;
+        result.imaging = runner.imaging();
     }
     result.run_wall_s = seconds_since(run_start);
     if (options.stop && options.stop->requested()) {
@@ -96,7 +98,7 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
     // report written (trainer/exam_files.hpp, shared with the trainer)
     const auto report_start = std::chrono::steady_clock::now();
     io::write_file<std::runtime_error>(options.out / "force.csv", scoring->force_csv());
-    result.report = trainer::write_exam_report(scorer, *volumes.volume, volumes.labels.get(), patient, options.out, options.trainee);
+    result.report = trainer::write_exam_report(scorer, *volumes.volume, volumes.labels.get(), patient, options.out, options.trainee, result.imaging);
     result.report_wall_s = seconds_since(report_start);
     return result;
 }

@@ -45,6 +45,7 @@ struct ExamRunOptions {
     gpu::ContextOptions gpu;
     std::string trainee;
     const StopSignals* stop = nullptr;  // checked every step: a signal ends the run without a report
+    std::optional<echo::Imaging> imaging;  // how the image is made; unset: as the scenario says
 };
 
 struct ExamRunResult {
@@ -55,6 +56,7 @@ struct ExamRunResult {
     double run_wall_s = 0;     // the runner's steps, frames written included [s]
     double report_wall_s = 0;  // imaging the stations and writing the report [s]
     std::uint32_t validation_messages = 0;
+    echo::Imaging imaging = echo::Imaging::interpolative;  // how the exam's images were made (the runner's)
 };
 
 // Runs the exam and writes its files into options.out. Throws std::runtime_error naming what failed

@@ -79,6 +79,10 @@ int main(int argc, char** argv)
     run_cmd->add_option("--labels", run.labels, "tissue labels on the volume's grid (NRRD or MetaImage, codes 0..255); without: linear deformation");
     run_cmd->add_option("--model", run.model, "tissue model JSON, as `echosim fit` writes it (default: the shipped thigh)");
     run_cmd->add_option("--case", run.case_name, "the case the start screen chooses: a shipped case's id (echosim case list), or random");
+    run_cmd->add_option("--imaging", run.imaging,
+                        "how the echographic image is made: interpolative (sliced from the case's reconstructed volume, deformed) or generative "
+                          "(synthesised each frame from the case's anatomy where the pressed tissue rests; needs labels); default: as the case says")
+        ->check(CLI::IsMember({"interpolative", "generative"}));
     run_cmd->add_option("--device", run.device,
                         "what moves the probe: mouse (and keyboard), spacemouse (3Dconnexion, hot-plugged), openhaptics (a 3D Systems "
                         "Touch/Phantom arm, force feedback), simulated-arm (a simulated hand on a simulated arm, force feedback), null")
@@ -267,6 +271,10 @@ int main(int argc, char** argv)
     exam_cmd->add_option("--records", exam_args.records, "the trainee records database (default: in the user's data folder)");
     exam_cmd->add_flag("--no-records", exam_args.no_records, "do not store the exam in the records");
     exam_cmd->add_flag("--coarse", exam_args.coarse, "make the case's volume at 0.6 mm, in seconds (tests, benchmarks)");
+    exam_cmd->add_option("--imaging", exam_args.imaging,
+                         "how the echographic image is made: interpolative (sliced from the case's reconstructed volume, deformed) or generative "
+                          "(synthesised each frame from the case's anatomy where the pressed tissue rests; needs labels); default: as the case says")
+        ->check(CLI::IsMember({"interpolative", "generative"}));
     add_gpu_options(exam_cmd, exam_args.gpu);
 
     RecordsArgs records_args;

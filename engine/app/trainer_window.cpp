@@ -165,6 +165,10 @@ void TrainerWindow::configure(runner::RunnerConfig& config)
     const exam::Scenario& c = case_to_load();
     config.session.patient.venous_pressure_mmHg = c.patient.venous_pressure_mmHg;
     config.session.patient.heart_rate_bpm = c.patient.heart_rate_bpm;
+    // the image as the case asks for it, unless the command line says (run_window checked the name);
+    // a user's volume without labels can only be sliced
+    config.imaging = !args_.imaging.empty() ? std::optional(echo::parse_imaging(args_.imaging)) : c.imaging;
+    if (!volumes_.labels) config.imaging = echo::Imaging::interpolative;
     if (args_.kiosk) {
         config.window.fullscreen = true;
         if (GLFWmonitor* m = glfwGetPrimaryMonitor())

@@ -337,15 +337,6 @@ const char* protocol_name(Protocol p)
     return "?";
 }
 
-const char* imaging_name(Imaging i)
-{
-    switch (i) {
-    case Imaging::interpolative: return "interpolative";
-    case Imaging::generative: return "generative";
-    }
-    return "?";
-}
-
 Scenario parse_scenario(const std::string& json_text, const std::filesystem::path& file)
 {
     const json j = parse_scenario_text(json_text, file);
@@ -377,10 +368,12 @@ Scenario parse_scenario(const std::string& json_text, const std::filesystem::pat
     sc.stations = read_stations(r, j.at("stations"), sc.protocol);
     sc.bands = read_bands(r, j.at("bands"));
 
-    const std::string imaging = j.contains("imaging") ? text(j, "imaging") : "interpolative";
-    if (imaging == "interpolative") sc.imaging = Imaging::interpolative;
-    else if (imaging == "generative") sc.imaging = Imaging::generative;
-    else r.fail("/imaging", "'" + imaging + "' is not an imaging mode (one of: " + one_of(fields::kImagingNames) + ")");
+    if (j.contains("imaging")) {
+        const std::string imaging = text(j, "imaging");
+        if (imaging == "interpolative") sc.imaging = Imaging::interpolative;
+        else if (imaging == "generative") sc.imaging = Imaging::generative;
+        else r.fail("/imaging", "'" + imaging + "' is not an imaging mode (one of: " + one_of(fields::kImagingNames) + ")");
+    }
     return sc;
 }
 

@@ -6,11 +6,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "echo/anatomy.hpp"
+#include "echo/echo_frame.hpp"
 
 namespace echosim::exam {
 
@@ -40,8 +42,8 @@ struct Patient {
     double heart_rate_bpm = 70.0;
 };
 
-enum class Imaging { interpolative, generative };
-const char* imaging_name(Imaging i);  // "interpolative", "generative"
+using echo::Imaging;  // the image a case is shown with (echo/echo_frame.hpp)
+using echo::imaging_name;
 
 struct Scenario {
     std::string id;            // file-name-like, unique among the shipped cases: "healthy", "fv-isolated-acute"
@@ -52,7 +54,8 @@ struct Scenario {
     Protocol protocol = Protocol::extended;
     std::vector<Station> stations;  // in the order the protocol visits them
     ScoringBands bands;
-    Imaging imaging = Imaging::interpolative;
+    // how the image is made; unset: as the machine suits (runner::RunnerConfig::imaging)
+    std::optional<Imaging> imaging;
 };
 
 // The error of a case file: which file, the field's JSON path ("/thrombi/0/extent_cm") and why.

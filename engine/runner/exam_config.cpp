@@ -34,6 +34,7 @@ RunnerConfig exam_config(ExamOptions o)
     c.extent = o.extent;
     c.volume = std::move(o.volume);
     c.labels = std::move(o.labels);
+    c.imaging = o.imaging;
     if (o.frames_per_s != 0) c.observers.push_back(std::make_shared<FrameRecorder>(o.frames_dir, o.frames_per_s));
     for (auto& obs : o.observers) c.observers.push_back(std::move(obs));
     c.input = std::move(o.input);

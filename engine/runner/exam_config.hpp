@@ -42,6 +42,7 @@ namespace echosim::runner {
 struct ExamOptions {
     session::SessionOptions session;  // the case (patient), the tissue, a device; the clock is set here
     std::shared_ptr<const io::Volume> volume, labels;
+    std::optional<echo::Imaging> imaging;  // the scenario's (RunnerConfig::imaging: unset, as the machine suits)
     std::optional<device::Trajectory> trajectory;  // a scripted device playing it (instead of session.device)
     std::string trajectory_name = "the exam's trajectory";
     double dt_s = 1.0 / 60.0;        // simulated seconds a step

@@ -19,10 +19,13 @@ render::TargetRect scene_rect(VkExtent2D frame, const echo::ImagePlane& plane)
 }
 
 SimulatorFrame::SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& commands, VkFormat format, const DefaultScene& scene,
-                               const io::Volume& volume, const io::Volume* labels, std::span<const PassFactory> extra)
+                               const io::Volume& volume, const io::Volume* labels, std::span<const PassFactory> extra, echo::Imaging imaging)
     : scene_pass_(ctx, commands, format, scene.meshes()),
-      echo_image_(ctx, std::make_shared<const image::EchoVolumeGpu>(commands, volume, labels), scene.session.image_plane(),
-                  scene.session.patient()),
+      echo_image_(ctx,
+                  std::make_shared<const image::EchoVolumeGpu>(
+                      commands, volume, labels, image::GreyLayout::best,
+                      imaging == echo::Imaging::generative ? image::LabelTexels::make : image::LabelTexels::none),
+                  scene.session.image_plane(), scene.session.patient(), image::DeformReads::best, imaging),
       smooth_(ctx, gpu::Filter::linear), panel_(ctx, format, {}), echo_pass_(echo_image_, panel_, smooth_), cue_pass_(commands, format),
       commands_(commands), drawn_window_(scene.session.window_serial())
 {

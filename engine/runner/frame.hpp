@@ -74,7 +74,8 @@ public:
     // presenter's. Uploads the volume (and its labels: null for none) once. Throws what the passes
     // throw (std::invalid_argument naming the pass of a list that cannot be recorded).
     SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& commands, VkFormat format, const DefaultScene& scene, const io::Volume& volume,
-                   const io::Volume* labels, std::span<const PassFactory> extra = {});
+                   const io::Volume* labels, std::span<const PassFactory> extra = {},
+                   echo::Imaging imaging = echo::Imaging::interpolative);
     SimulatorFrame(const SimulatorFrame&) = delete;
     SimulatorFrame& operator=(const SimulatorFrame&) = delete;
 

@@ -18,6 +18,8 @@ void checked(const RunnerConfig& c)
                                     " s: need 0 < min_dt_s <= max_dt_s");
     if (c.max_steps < 0) throw std::invalid_argument(who + "max_steps " + std::to_string(c.max_steps) + ": must be >= 0");
     if (c.output != Output::none && !c.volume) throw std::invalid_argument(who + "volume: a frame needs the echographic volume");
+    if (c.output != Output::none && c.imaging == echo::Imaging::generative && !c.labels)
+        throw std::invalid_argument(who + "imaging: generative imaging synthesises the image from the tissue labels, and none are given");
     if (c.output == Output::none && !c.passes.empty()) throw std::invalid_argument(who + "passes: given, but there is no frame (output none)");
     for (const auto& o : c.observers)
         if (!o) throw std::invalid_argument(who + "observers: one is null");
@@ -47,8 +49,10 @@ Runner::Runner(RunnerConfig config) : config_((checked(config), std::move(config
         } else {
             presenter_ = std::make_unique<OffscreenOutput>(*commands_, config_.extent);
         }
+        imaging_ = config_.imaging.value_or(config_.labels && ctx_->device_type() != VK_PHYSICAL_DEVICE_TYPE_CPU ? echo::Imaging::generative
+                                                                                                                 : echo::Imaging::interpolative);
         frame_ = std::make_unique<SimulatorFrame>(*ctx_, *commands_, presenter_->format(), *scene_, *config_.volume, config_.labels.get(),
-                                                  config_.passes);
+                                                  config_.passes, imaging_);
     }
     for (const auto& o : config_.observers) o->on_attach(*this);
 }

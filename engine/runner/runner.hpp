@@ -39,6 +39,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -138,6 +139,10 @@ struct RunnerConfig {
     // the echographic volume and its labels (null: none, the paper's linear deformation); needed
     // for any output
     std::shared_ptr<const io::Volume> volume, labels;
+    // how the echographic image is made (echo::Imaging; generative needs the labels). Unset: as the
+    // machine suits: generative on a GPU; interpolative on a CPU's Vulkan (lavapipe), where the
+    // generative image halves the window's frame rate (bench/RESULTS.md), and without labels
+    std::optional<echo::Imaging> imaging;
     std::vector<PassFactory> passes;     // the configuration's own passes (runner/frame.hpp)
     // the camera keeps the probe in frame (scene::OrbitCamera::follow, each step with the step's
     // dt): a trainee sliding from the groin to the knee is not left looking at an empty groin
@@ -187,6 +192,9 @@ public:
     WindowOutput* window_output() { return window_output_; }
     gpu::Window* window() { return window_.get(); }
     SimulatorFrame* frame() { return frame_.get(); }
+    // how the frame's echographic image is made (RunnerConfig::imaging, resolved); with no frame,
+    // the configuration's, or interpolative
+    echo::Imaging imaging() const { return imaging_; }
 
     // The echographic image of `input` at full resolution, rendered now and read back with its
     // stages' outputs (image::EchoImageGpu::render; the deformed labels with `want_labels`), for the
@@ -206,6 +214,7 @@ private:
     std::unique_ptr<Presenter> presenter_;
     WindowOutput* window_output_ = nullptr;  // presenter_, when it is a window
     std::unique_ptr<SimulatorFrame> frame_;
+    echo::Imaging imaging_ = echo::Imaging::interpolative;
     io::RgbaImage pixels_;  // read-backs land here (allocated once)
     std::int64_t steps_ = 0, frames_ = 0;
     bool finished_ = false;

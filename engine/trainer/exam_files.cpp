@@ -21,7 +21,8 @@ std::string station_image_name(std::size_t i, const std::string& station)
 }
 
 exam::ExamReport write_exam_report(const exam::Scorer& scorer, const io::Volume& volume, const io::Volume* labels,
-                                   const echo::PatientCase& patient, const std::filesystem::path& out, const std::string& trainee)
+                                   const echo::PatientCase& patient, const std::filesystem::path& out, const std::string& trainee,
+                                   echo::Imaging imaging)
 {
     std::filesystem::create_directories(out / "stations");
     const std::vector<exam::StationTruth>& truth = scorer.truth();
@@ -33,7 +34,8 @@ exam::ExamReport write_exam_report(const exam::Scorer& scorer, const io::Volume&
         const std::optional<echo::EchoFrame>& deepest = scorer.deepest_frame(i);
         if (!deepest) continue;
         // one image at the deepest press serves the report's picture and its deformed labels
-        const echo::EchoImage pressed = echo::render_echo_cpu(volume, labels, plane, *deepest, scanner, patient, true);
+        const echo::EchoImage pressed =
+            echo::render_echo_cpu(volume, labels, plane, *deepest, scanner, patient, true, labels ? imaging : echo::Imaging::interpolative);
         if (labels) {
             const echo::EchoImage rest = echo::render_echo_cpu(volume, labels, plane, exam::unpressed(*deepest), scanner, patient, true);
             compression[i] = exam::measure_compression(truth[i], *deepest, plane, rest.labels, pressed.labels);

@@ -19,9 +19,11 @@ namespace echosim::trainer {
 // The station's image's name in the report's folder: "stations/03-fv-6-cm.png".
 std::string station_image_name(std::size_t i, const std::string& station);
 
-// Writes the stations' images and the report into `out` (made) and returns the report, the trainee
-// named. `labels` null: no compression measured. Throws what writing throws (naming the file).
+// Writes the stations' images (made as the exam showed them: `imaging`) and the report into `out`
+// (made) and returns the report, the trainee named. `labels` null: no compression measured (and
+// interpolative images only). Throws what writing throws (naming the file).
 exam::ExamReport write_exam_report(const exam::Scorer& scorer, const io::Volume& volume, const io::Volume* labels,
-                                   const echo::PatientCase& patient, const std::filesystem::path& out, const std::string& trainee);
+                                   const echo::PatientCase& patient, const std::filesystem::path& out, const std::string& trainee,
+                                   echo::Imaging imaging = echo::Imaging::interpolative);
 
 }  // namespace echosim::trainer

@@ -7,13 +7,19 @@ namespace echosim::trainer {
 TrainerDriver::TrainerDriver(std::shared_ptr<Trainer> trainer, DriverOptions options)
     : trainer_(std::move(trainer)), options_(std::move(options))
 {
+    make_reports(echo::Imaging::interpolative);
+}
+
+void TrainerDriver::make_reports(echo::Imaging imaging)
+{
     auto volume = options_.volume;
     auto labels = options_.labels;
     const echo::PatientCase patient = options_.patient;
-    trainer_->set_report_maker([volume, labels, patient](const exam::Scorer& scorer, const std::filesystem::path& out, const std::string& trainee) {
-        if (!volume) throw std::logic_error("the trainer's runner holds no volume to image the stations from");
-        return write_exam_report(scorer, *volume, labels.get(), patient, out, trainee);
-    });
+    trainer_->set_report_maker(
+        [volume, labels, patient, imaging](const exam::Scorer& scorer, const std::filesystem::path& out, const std::string& trainee) {
+            if (!volume) throw std::logic_error("the trainer's runner holds no volume to image the stations from");
+            return write_exam_report(scorer, *volume, labels.get(), patient, out, trainee, imaging);
+        });
 }
 
 runner::PassFactory TrainerDriver::pass()
@@ -39,6 +45,7 @@ void TrainerDriver::feed(const ui::UiInput& input)
 void TrainerDriver::on_attach(runner::Runner& runner)
 {
     runner_ = &runner;
+    make_reports(runner.imaging());  // the stations imaged as the runner shows the image
 }
 
 void TrainerDriver::act(Action a)

@@ -70,6 +70,8 @@ private:
     DriverOptions options_;
     ui::UiPass* ui_ = nullptr;
     runner::Runner* runner_ = nullptr;
+    // the trainer's report maker: the stations' images made with `imaging`
+    void make_reports(echo::Imaging imaging);
     std::vector<ui::UiInput> pending_;
     float last_mouse_x_ = -1, last_mouse_y_ = -1;
     bool quit_ = false;

@@ -234,6 +234,36 @@ TEST(Runner, RefusesAConfigurationItCannotRunNamingTheField)
         EXPECT_NE(std::string(e.what()).find("volume"), std::string::npos) << e.what();
     }
     EXPECT_THROW(runner::exam_config({}), std::invalid_argument);  // no trajectory, no duration
+    // generative imaging synthesises from the labels: a volume without them cannot be imaged so
+    const TestVolumes v = small_volume();
+    runner::ExamOptions unlabelled = small_exam(v);
+    unlabelled.labels = nullptr;
+    unlabelled.duration_s = 0.1;
+    unlabelled.imaging = echo::Imaging::generative;
+    try {
+        runner::Runner r(runner::exam_config(std::move(unlabelled)));
+        ADD_FAILURE() << "a generative image without labels was made";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("imaging"), std::string::npos) << e.what();
+    }
+}
+
+// Unset, the imaging is the machine's: interpolative on lavapipe (a CPU device), where generative
+// imaging halves the frame rate; asked for, generative is made there too, its frames drawn clean.
+TEST(Runner, TheImagingIsTheMachinesUnlessTheConfigurationSays)
+{
+    const TestVolumes v = small_volume();
+    for (const auto asked : {std::optional<echo::Imaging>{}, std::optional(echo::Imaging::generative)}) {
+        runner::ExamOptions o = small_exam(v);
+        o.duration_s = 2.0 / 60;
+        o.imaging = asked;
+        runner::Runner r(runner::exam_config(std::move(o)));
+        EXPECT_EQ(r.imaging(), asked.value_or(echo::Imaging::interpolative));
+        const echo::Imaging shown = r.frame()->echo_image().imaging();
+        EXPECT_EQ(shown, r.imaging());
+        r.run();
+        EXPECT_EQ(r.validation_counter()->load(), 0u);
+    }
 }
 
 // A pass a configuration adds: draws nothing, names itself, counts the frames it is set up for.
