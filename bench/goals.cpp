@@ -84,6 +84,13 @@ const std::vector<Goal>& design_goals()
          "fill_seconds", C::at_most, 30, 1, "s"},
         {"reconstruction: hole filling, 0.1 mm volume (native voxels)", "-", "volumes at native 0.1 mm voxels work (< 30 s)", "reconstruct",
          "reconstruct/0.1mm", "fill_seconds", C::at_most, 30, 1, "s"},
+        // B-mode synthesis (issue 33)
+        {"B-mode sweep synthesis, 400x500, lavapipe", "-", ">= 50 frames/s: a case's volume in under 10 s (issue 33)", "bmode",
+         "bmode/lavapipe/400x500", "fps", C::at_least, 50, 1, "frames/s"},
+        {"the live generative image, pressed (deform included), 512x512, lavapipe", "-", ">= 30 fps (issue 33)", "bmode",
+         "bmode/lavapipe/512x512/live", "fps", C::at_least, 30, 1, "fps"},
+        {"the live generative image, pressed (deform included), 1024x1024, real GPU", "-", ">= 1,000 fps on a real GPU (issue 33)", "bmode",
+         "bmode/gpu/1024x1024/live", "fps", C::at_least, 1000, 1, "fps", "no GPU"},
         // the exam and the trainer (issues 31 and 32)
         {"the extended exam headless, frames written at 10 per simulated second, lavapipe", "-", ">= real time (issue 31)", "exam",
          "exam/extended/healthy/frames-10", "realtime_x", C::at_least, 1, 1, "x real time"},

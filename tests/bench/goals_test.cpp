@@ -107,7 +107,7 @@ TEST(BenchGoals, ShippedGoalsReadTheRecordedResults)
 {
     nlohmann::json recorded = nlohmann::json::array();
     for (const char* file : {"fit_2core.json", "physics_2core.json", "haptics_2core_floor.json", "slice_2core.json", "reconstruct_2core.json",
-                             "exam_2core.json", "e2e_2core.json", "ui_2core.json"}) {
+                             "exam_2core.json", "e2e_2core.json", "ui_2core.json", "bmode_live_2core.json"}) {
         std::ifstream in(std::filesystem::path(ECHOSIM_BENCH_RESULTS_DIR) / file);
         ASSERT_TRUE(in) << file;
         recorded.push_back(nlohmann::json::parse(in));
