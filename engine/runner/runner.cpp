@@ -49,8 +49,10 @@ Runner::Runner(RunnerConfig config) : config_((checked(config), std::move(config
         } else {
             presenter_ = std::make_unique<OffscreenOutput>(*commands_, config_.extent);
         }
-        imaging_ = config_.imaging.value_or(config_.labels && ctx_->device_type() != VK_PHYSICAL_DEVICE_TYPE_CPU ? echo::Imaging::generative
-                                                                                                                 : echo::Imaging::interpolative);
+        // unset: generative where it keeps the pace (a GPU) and can read the labels (as texels)
+        const bool generative_fits = config_.labels && ctx_->device_type() != VK_PHYSICAL_DEVICE_TYPE_CPU &&
+                                     config_.labels->voxel_count() <= ctx_->limits().maxTexelBufferElements;
+        imaging_ = config_.imaging.value_or(generative_fits ? echo::Imaging::generative : echo::Imaging::interpolative);
         frame_ = std::make_unique<SimulatorFrame>(*ctx_, *commands_, presenter_->format(), *scene_, *config_.volume, config_.labels.get(),
                                                   config_.passes, imaging_);
     }

@@ -141,7 +141,8 @@ struct RunnerConfig {
     std::shared_ptr<const io::Volume> volume, labels;
     // how the echographic image is made (echo::Imaging; generative needs the labels). Unset: as the
     // machine suits: generative on a GPU; interpolative on a CPU's Vulkan (lavapipe), where the
-    // generative image halves the window's frame rate (bench/RESULTS.md), and without labels
+    // generative image halves the window's frame rate (bench/RESULTS.md), without labels, and for
+    // labels larger than the device's texel buffers
     std::optional<echo::Imaging> imaging;
     std::vector<PassFactory> passes;     // the configuration's own passes (runner/frame.hpp)
     // the camera keeps the probe in frame (scene::OrbitCamera::follow, each step with the step's
