@@ -24,8 +24,9 @@ void apply(SimulatorFrame& frame, const ScannerInput& in)
 std::string scanner_status(SimulatorFrame& frame)
 {
     const echo::ScannerSettings& s = frame.echo_image().scanner();
-    char text[96];
-    std::snprintf(text, sizeof text, "gain %+.0f dB, focus %.1f mm%s", s.gain_db, s.focus_mm, frame.echo_pass().frozen() ? ", FROZEN" : "");
+    char text[128];
+    std::snprintf(text, sizeof text, "%s image, gain %+.0f dB, focus %.1f mm%s", echo::imaging_name(frame.echo_image().imaging()), s.gain_db,
+                  s.focus_mm, frame.echo_pass().frozen() ? ", FROZEN" : "");
     return text;
 }
 

@@ -28,7 +28,8 @@ echo::ScannerSettings adjusted(const echo::ScannerSettings& s, const ScannerInpu
 // Applies `in` to the frame's image: its settings, and freeze toggled.
 void apply(SimulatorFrame& frame, const ScannerInput& in);
 
-// "gain +4 dB, focus 22.5 mm" and ", FROZEN" when it is: for a title bar or a status line.
+// "interpolative image, gain +4 dB, focus 22.5 mm" and ", FROZEN" when it is: for a title bar or a
+// status line (the imaging said, so an instructor knows which image the trainee sees).
 std::string scanner_status(SimulatorFrame& frame);
 
 }  // namespace echosim::runner

@@ -69,3 +69,18 @@ execute_process(COMMAND ${ECHOSIM} slice --volume ${WORK}/one_slice.mha --pose 0
 if(NOT rc EQUAL 2 OR NOT err MATCHES "misses [^\n]*one_slice.mha[^\n]* entirely: nothing written" OR EXISTS ${WORK}/black.png)
   message(FATAL_ERROR "a plane missing the volume was not said (${rc}):\n${out}${err}")
 endif()
+# issue 33: the generative image, on the GPU (validation on) and the CPU twin, pressed; a volume of
+# the user's without labels cannot be imaged so, and says why (exit 2, nothing written)
+run_ok("generative slice (GPU)" slice --out ${WORK}/gen.png --press-mm 8 --imaging generative --gpu cpu --validation)
+run_ok("generative slice (CPU twin)" slice --out ${WORK}/gen_cpu.png --press-mm 8 --imaging generative --cpu)
+foreach(png gen.png gen_cpu.png)
+  file(SIZE ${WORK}/${png} bytes)
+  if(bytes LESS 20000)
+    message(FATAL_ERROR "the generative image ${png} is ${bytes} bytes: not a speckled 400 x 500 image")
+  endif()
+endforeach()
+execute_process(COMMAND ${ECHOSIM} slice --volume ${WORK}/one_slice.mha --imaging generative --out ${WORK}/never.png --cpu
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "--imaging generative: [^\n]*one_slice.mha[^\n]* no tissue labels" OR EXISTS ${WORK}/never.png)
+  message(FATAL_ERROR "a generative image without labels was not refused by name (${rc}):\n${out}${err}")
+endif()

@@ -447,6 +447,7 @@ TEST(Runner, AFrozenImageStaysWhileTheProbeMovesOn)
         for (int i = 0; i < 10; ++i) ASSERT_TRUE(r.step());
         runner::apply(*r.frame(), {.toggle_freeze = true});
         EXPECT_NE(runner::scanner_status(*r.frame()).find("FROZEN"), std::string::npos);
+        EXPECT_EQ(runner::scanner_status(*r.frame()).rfind("interpolative image, ", 0), 0u) << runner::scanner_status(*r.frame());
         ASSERT_TRUE(r.step());
         const io::RgbaImage frozen = keep->last;
         place->press_mm = 10.0;  // pressed 8 mm further
