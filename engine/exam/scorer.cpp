@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -86,7 +87,7 @@ Scorer::Scorer(const Scenario& scenario, std::vector<StationTruth> truth)
 {
 }
 
-Scorer::Geometry Scorer::geometry(const VesselAxis& axis, const Pose& face)
+Scorer::Geometry Scorer::geometry(const VesselAxis& axis, const Pose& face, const glm::dvec3& down)
 {
     Geometry g;
     if (axis.radius_mm <= 0) return g;
@@ -96,8 +97,14 @@ Scorer::Geometry Scorer::geometry(const VesselAxis& axis, const Pose& face)
     if (std::abs(dn) < 1e-6) return g;  // the vessel runs in the plane: it does not cross it
     const double t = glm::dot(f - axis.centre, n) / dn;
     const glm::dvec3 q = axis.centre + t * axis.direction;
-    // where the face sits along the vessel, not where its tilted plane crosses it deeper down
-    g.along_mm = glm::dot(f - axis.centre, axis.direction);
+    // where the probe sits along the vessel: the vessel's point nearest the line from the face
+    // along the station's way in (not where the probe's own tilted plane or beam crosses it deeper
+    // down: a tilt stays at the station, to be judged oblique; nor the face's plain projection,
+    // which a vessel diving under a thick fat layer shifts by the depth times the dive: under 38 mm
+    // of fat the face over FV 22 cm projected within 10 mm of FV 24 cm's station, and was scored there)
+    const glm::dvec3 w = f - axis.centre;
+    const double across = glm::dot(down, axis.direction), parallel = 1 - across * across;
+    g.along_mm = parallel > 1e-6 ? (glm::dot(axis.direction, w) - across * glm::dot(down, w)) / parallel : glm::dot(w, axis.direction);
     g.lateral_mm = glm::dot(q - f, to_d(face.axis_x()));
     const double depth = glm::dot(q - f, to_d(face.axis_y()));
     g.crosses = depth > 0 && depth < kLinearProbe.image_depth_mm;
@@ -120,14 +127,27 @@ void Scorer::observe(const ExamSample& s)
     current_.reset();
     double nearest_angle = 90;
     double nearest_along = 1e9;
+    std::vector<Geometry>& geometries = geometries_;
+    geometries.clear();
+    // the probe is at one station at most: the nearest along the vein of those it is over
+    std::optional<std::size_t> at;
+    for (std::size_t i = 0; i < truth_.size(); ++i) {
+        const Geometry g = geometry(truth_[i].vein, s.face, to_d(truth_[i].ideal_probe.axis_y()));
+        geometries.push_back(g);
+        if (!contact || !g.crosses || std::abs(g.along_mm) > kAlongToleranceMm) continue;
+        if (std::abs(g.lateral_mm) <= bands.reach_mm && g.angle_deg <= kVisitMaxAngleDeg &&
+            (!at || std::abs(g.along_mm) < std::abs(geometries[*at].along_mm)))
+            at = i;
+    }
     for (std::size_t i = 0; i < truth_.size(); ++i) {
         const StationTruth& t = truth_[i];
         Tracked& st = stations_[i];
-        const Geometry g = geometry(t.vein, s.face);
+        const Geometry& g = geometries[i];
         if (g.crosses && std::abs(g.along_mm) < nearest_along) nearest_along = std::abs(g.along_mm), nearest_angle = g.angle_deg;
         if (!contact || !g.crosses || std::abs(g.along_mm) > kAlongToleranceMm) continue;
         const bool over_vein = std::abs(g.lateral_mm) <= bands.reach_mm;
         if (over_vein && g.angle_deg <= kVisitMaxAngleDeg) {
+            if (at != i) continue;  // over the vein, but nearer another station
             // at the station: the deepest press there is the one judged
             current_ = i;
             last_examined_ = i;
@@ -142,7 +162,8 @@ void Scorer::observe(const ExamSample& s)
                 st.oblique = true, st.oblique_at_s = s.time_s, st.oblique_angle_deg = g.angle_deg;
         } else if (!over_vein && pressing && !st.wrong_vessel) {
             // pressing beside the vein: over the artery or the great saphenous vein instead
-            const Geometry a = geometry(t.artery, s.face), v = geometry(t.saphenous, s.face);
+            const glm::dvec3 down = to_d(t.ideal_probe.axis_y());
+            const Geometry a = geometry(t.artery, s.face, down), v = geometry(t.saphenous, s.face, down);
             const double a_reach = std::max(bands.reach_mm, t.artery.radius_mm);
             const double v_reach = std::max(bands.reach_mm, t.saphenous.radius_mm);
             if (a.crosses && std::abs(a.lateral_mm) <= a_reach && std::abs(a.lateral_mm) < std::abs(g.lateral_mm))

@@ -2,8 +2,9 @@
 // step and judges each station of the case's protocol on the simulation's truth (STYLE.md 16), never
 // on the image alone:
 //   - reached: the vein's axis crosses the image plane within ScoringBands::reach_mm of the beam's
-//     centre line, within kAlongToleranceMm of the station along the vein, the plane within
-//     transverse_deg of transverse, the probe in contact;
+//     centre line, within kAlongToleranceMm of the station along the vein (where the beam's centre
+//     line passes nearest it), the plane within transverse_deg of transverse, the probe in contact;
+//     a probe within reach of two stations is at the nearer one;
 //   - pressed: the peak force while there, against the case's adequate and excessive bands, and the
 //     session's echo frame at that deepest press, kept to be imaged afterwards;
 //   - compression: the vein's interior (lumen and thrombus) and the artery's lumen in the deformed
@@ -105,7 +106,9 @@ private:
         double angle_deg = 90;    // the plane's normal from the vessel's direction
         bool crosses = false;     // the axis crosses the plane within the image's depth
     };
-    static Geometry geometry(const VesselAxis& axis, const Pose& face);
+    // `down`: the station's own way into the tissue (its ideal probe's beam), along which the face
+    // is carried to the vessel to say where along it the probe sits
+    static Geometry geometry(const VesselAxis& axis, const Pose& face, const glm::dvec3& down);
 
     struct Tracked {
         bool reached = false;
@@ -126,6 +129,7 @@ private:
     Scenario scenario_;
     std::vector<StationTruth> truth_;
     std::vector<Tracked> stations_;
+    std::vector<Geometry> geometries_;  // observe()'s, kept between samples (no allocation a sample)
     std::optional<std::size_t> current_, last_examined_;
     bool have_last_ = false;
     glm::dvec3 last_position_{0.0};

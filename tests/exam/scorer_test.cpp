@@ -121,6 +121,37 @@ TEST(Scorer, SkippedStationOnly)
     EXPECT_NE(r.conclusion.find("Incomplete"), std::string::npos);
 }
 
+// A vein rising 20 degrees towards the skin down the limb under a thick layer (40 mm down at FV 10,
+// stations 20 mm apart along it): the face over FV 10 projects 40 sin 20 = 13.7 mm along the
+// vessel's own line, past the tolerance, and within 10 mm of the next station (6.3 mm short of it),
+// where it was scored; carried along the station's way in, it is at FV 10, and the press and the
+// call are FV 10's alone.
+TEST(Scorer, APressOverASlopingVeinIsScoredAtItsOwnStation)
+{
+    constexpr double kDeep = 40, kSlope = 20 * std::numbers::pi / 180;
+    const glm::dvec3 along(0, -std::sin(kSlope), -std::cos(kSlope));  // down the limb (-z), nearer the skin (-y)
+    std::vector<StationTruth> stations;
+    for (int k = 0; k < 2; ++k) {
+        StationTruth t = station(k == 0 ? "FV 10" : "FV 12", -100);
+        const glm::dvec3 centre = glm::dvec3(0, kDeep, -100) + 20.0 * k * along;
+        t.vein = {centre, along, 4.0};
+        t.artery = {centre + glm::dvec3(kArteryX, 0, 0), along, 3.5};
+        t.ideal_probe.position = glm::vec3(float(centre.x), 0, float(centre.z));
+        stations.push_back(t);
+    }
+    // a probe transverse to the vein: its plane's normal along the vein
+    const Pose over = at(0, -100, -20);
+    Scorer s(scenario(), stations);
+    s.call(press(s, over, 8, 0), Call::compressible);
+    const ExamReport r = finish(s);
+    EXPECT_TRUE(r.stations[0].reached);
+    EXPECT_NEAR(r.stations[0].peak_force_N, 8, 1e-9);
+    EXPECT_EQ(r.stations[0].call, Call::compressible);
+    EXPECT_FALSE(r.stations[1].reached);
+    EXPECT_EQ(r.stations[1].peak_force_N, 0);
+    EXPECT_EQ(r.stations[1].call, Call::none);
+}
+
 TEST(Scorer, ObliquePlaneOnly)
 {
     Scorer s(scenario(), {station("FV 10", -100)});
