@@ -226,10 +226,8 @@ KERNEL_FN vec2 bmode_smooth_scatterer(vec3 p, vec3 inverse, uint salt)
 }
 
 // The complex scatterer field at p summed over the beam's elevational planes (along the probe's
-// z), weighted by the beam's profile: for a sweep each plane one lattice step from the next, the
-// field point-sampled; for a live frame (`live_field`) the interpolated field, its planes further apart
-// (bmode_live_params: the interpolated field is nearly independent over two lattice steps, so fewer
-// planes serve).
+// z), each plane one lattice step from the next and weighted by the beam's profile: the field
+// point-sampled for a sweep, interpolated for a live frame (`live_field`, bmode_smooth_scatterer).
 KERNEL_FN vec2 bmode_elevation_sum(vec3 p, vec3 z, bool live_field BMODE_K)
 {
     BMODE_PRECISE vec2 sum = vec2(0.0f);

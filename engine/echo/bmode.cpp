@@ -47,8 +47,10 @@ constexpr std::array<Acoustics, kTissueCount> kAcoustics = {{
 }};
 constexpr float kSpecular = 40.0f;  // specular echo relative to a unit scatterer (about 20 dB over speckle)
 constexpr double kLattice = 0.1;    // scatterer lattice [mm]
-// the live frames' elevational planes' spacing [mm]: two lattice steps, over which the interpolated
-// field (bmode_smooth_scatterer) is as good as independent; 9 planes at the probe's 1.2 mm slice
+// the live frames' elevational planes' spacing [mm]: one lattice step, as the sweeps'. The
+// interpolated field (bmode_smooth_scatterer) is as good as independent over two steps, but planes
+// that far apart made the speckle decorrelate within 0.05 mm of elevational motion (NCC 0.44) where
+// the beam's thickness keeps it over about a millimetre: 17 planes at the probe's 1.2 mm slice
 constexpr double kLiveElevationStepMm = 0.1;
 static_assert(kTissueCount <= BMODE_MAX_TISSUES, "the kernels' tissue tables hold BMODE_MAX_TISSUES codes");
 
@@ -266,7 +268,7 @@ kernels::BModeParams bmode_live_params(const ImagePlane& plane, ScanSpec spec)
     k.rows = plane.rows;
     k.row_words = (k.columns + 3) / 4;
     k.pixel_mm = float(plane.pixel_y_mm());
-    // the elevational planes of the interpolated field (bmode_live_elevation_sum), kLiveElevationStepMm apart
+    // the elevational planes of the interpolated field (bmode_elevation_sum), kLiveElevationStepMm apart
     const double sigma_e = spec.elevational_fwhm_mm / 2.3548;
     const int reach = int(std::ceil(1.5 * sigma_e / kLiveElevationStepMm));
     if (2 * reach + 1 > BMODE_MAX_PLANES)
