@@ -14,6 +14,7 @@
 #include "core/fork_join.hpp"
 #include "echo/log_compress.hpp"
 #include "echo/reconstruct.hpp"
+#include "echo/slice_cpu.hpp"
 #include "echo/sweep.hpp"
 
 namespace echosim::echo {
@@ -294,28 +295,13 @@ BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams&
                            const Pose& pressed, std::span<const float> map)
 {
     if (labels.type != io::VoxelType::uint8) throw std::invalid_argument("the label volume's voxels are not uint8 tissue codes");
-    const bool warped = !map.empty();
-    if (warped && map.size() != std::size_t(slice.map_columns) * slice.rows * 2)
+    if ((slice.flags & SLICE_WARPED) != 0u && map.size() != std::size_t(slice.map_columns) * slice.rows * 2)
         throw std::invalid_argument("synthesize_live: a deform map of " + std::to_string(map.size() / 2) + " entries, the plane needs " +
                                     std::to_string(std::size_t(slice.map_columns) * slice.rows));
-    const std::uint8_t* codes = labels.as<std::uint8_t>();
     const kernels::BModePose f = bmode_pose(pressed);
-    const auto entry = [&](std::uint32_t r, std::uint32_t column) {
-        const std::size_t at = (std::size_t(r) * slice.map_columns + column) * 2;
-        return vec2(map[at], map[at + 1]);
-    };
     return run_twin(params, f, [&](std::uint32_t c, std::uint32_t r) {
-        float source_y = kernels::pixel_y(r, slice.pixel_y_mm);
-        if (warped) {
-            const kernels::MapTap t = kernels::map_tap(c, slice);
-            source_y = kernels::map_between(entry(r, t.left), entry(r, t.right), t.right_weight).x;
-        }
-        const float x = kernels::pixel_x(c, slice.pixel_x_mm, slice.width_mm);
-        const glm::vec3 index(slice.probe_to_index * glm::vec4(x, source_y, 0.0f, 1.0f));
-        const glm::ivec3 v(glm::floor(index + 0.5f));
-        const bool inside = v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < int(labels.size[0]) && v.y < int(labels.size[1]) && v.z < int(labels.size[2]);
-        const std::uint32_t t = inside ? codes[labels.index(std::size_t(v.x), std::size_t(v.y), std::size_t(v.z))] : 0u;
-        return PixelSource{kernels::bmode_live_world(f, x, source_y), t};
+        const SliceSample s = slice_sample(slice, map, c, r);
+        return PixelSource{kernels::bmode_live_world(f, s.x, s.map.x), label_at(labels, s.index)};
     }, true);
 }
 

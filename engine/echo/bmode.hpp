@@ -118,8 +118,8 @@ kernels::BModeParams bmode_live_params(const ImagePlane& plane, ScanSpec spec = 
 // image of the probe pressed at `pressed` whose pixels show the tissue resting where the deform map
 // `map` (deform_bindings.h: source y [mm], gain [dB] a pair, slice.map_columns x rows pairs; empty
 // when nothing is pressed) puts it, `slice` the frame's slice parameters (echo::make_kernel_params:
-// the plane, the map's geometry, the pressed probe to `labels`' voxels). Throws
-// std::invalid_argument for labels that are not uint8 or a map of the wrong size.
+// the plane, the map's geometry, the pressed probe to `labels`' voxels; SLICE_WARPED: the map is
+// read). Throws std::invalid_argument for labels that are not uint8 or a map of the wrong size.
 BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams& params, const kernels::SliceParams& slice,
                            const Pose& pressed, std::span<const float> map);
 

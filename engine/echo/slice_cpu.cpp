@@ -70,6 +70,29 @@ std::vector<std::uint8_t> slice_labels(const io::Volume& v, const Pose& pose, co
     });
 }
 
+SliceSample slice_sample(const kernels::SliceParams& p, std::span<const float> map, std::uint32_t c, std::uint32_t r)
+{
+    using namespace kernels;
+    SliceSample s{pixel_x(c, p.pixel_x_mm, p.width_mm), vec2(pixel_y(r, p.pixel_y_mm), 0.0f), vec3(0.0f)};
+    if ((p.flags & SLICE_WARPED) != 0u) {
+        const MapTap t = map_tap(c, p);
+        const std::size_t row_start = std::size_t(r) * p.map_columns;
+        const vec2 left(map[2 * (row_start + t.left)], map[2 * (row_start + t.left) + 1]);
+        const vec2 right(map[2 * (row_start + t.right)], map[2 * (row_start + t.right) + 1]);
+        s.map = map_between(left, right, t.right_weight);
+    }
+    s.index = vec3(p.probe_to_index * vec4(s.x, s.map.x, 0.0f, 1.0f));
+    return s;
+}
+
+std::uint8_t label_at(const io::Volume& labels, const glm::vec3& index)
+{
+    const glm::vec3 v = glm::floor(index + 0.5f);
+    if (v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < float(labels.size[0]) && v.y < float(labels.size[1]) && v.z < float(labels.size[2]))
+        return labels.as<std::uint8_t>()[labels.index(std::size_t(v.x), std::size_t(v.y), std::size_t(v.z))];
+    return 0;
+}
+
 SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, std::span<const float> map,
                             const kernels::SliceParams& p)
 {
@@ -78,7 +101,6 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
     const bool warped = (p.flags & SLICE_WARPED) != 0u, want_labels = (p.flags & SLICE_LABELS) != 0u;
     if (warped && map.size() != 2 * std::size_t(p.map_columns) * p.rows) throw std::invalid_argument("slice: the deform map does not match the image");
     const std::uint8_t* g = volume.as<std::uint8_t>();
-    const std::uint8_t* l = labels ? labels->as<std::uint8_t>() : nullptr;
     const vec3 size(float(volume.size[0]), float(volume.size[1]), float(volume.size[2]));
     SliceOutput out;
     out.grey.resize(n);
@@ -87,17 +109,9 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
     for (std::uint32_t r = 0; r < p.rows; ++r)
         for (std::uint32_t c = 0; c < p.columns; ++c) {
             const std::size_t i = std::size_t(r) * p.columns + c;
-            float y = pixel_y(r, p.pixel_y_mm);
-            if (warped) {
-                const MapTap t = map_tap(c, p);
-                const std::size_t row_start = std::size_t(r) * p.map_columns;
-                const vec2 left(map[2 * (row_start + t.left)], map[2 * (row_start + t.left) + 1]);
-                const vec2 right(map[2 * (row_start + t.right)], map[2 * (row_start + t.right) + 1]);
-                const vec2 m = map_between(left, right, t.right_weight);
-                y = m.x;
-                out.gain[i] = m.y;
-            }
-            const vec3 index(p.probe_to_index * vec4(pixel_x(c, p.pixel_x_mm, p.width_mm), y, 0.0f, 1.0f));
+            const SliceSample sample = slice_sample(p, map, c, r);
+            if (warped) out.gain[i] = sample.map.y;
+            const vec3 index = sample.index;
             if (inside_volume(index, size)) {
                 const auto tx = taps(index.x, volume.size[0]), ty = taps(index.y, volume.size[1]), tz = taps(index.z, volume.size[2]);
                 float s = 0;
@@ -108,11 +122,7 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
                                  float(g[volume.index(tx.at[dx], ty.at[dy], tz.at[dz])]);
                 out.grey[i] = s;
             }
-            if (want_labels && l) {
-                const vec3 v = floor(index + 0.5f);
-                if (v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < float(labels->size[0]) && v.y < float(labels->size[1]) && v.z < float(labels->size[2]))
-                    out.labels[i] = l[labels->index(std::size_t(v.x), std::size_t(v.y), std::size_t(v.z))];
-            }
+            if (want_labels && labels) out.labels[i] = label_at(*labels, index);
         }
     return out;
 }

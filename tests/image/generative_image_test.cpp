@@ -217,6 +217,15 @@ TEST(GenerativeImage, TheSpeckleMovesWithTheTissue)
                 blocks, across_interfaces, largest_strain, worst_error, worst_ncc, worst_shifted);
 }
 
+// The live image of the probe resting at `face` (nothing pressed) over `labels`, on the CPU twin.
+echo::BModeImage live_at_rest(const io::Volume& labels, const echo::ImagePlane& plane, const kernels::BModeParams& params, const Pose& face)
+{
+    echo::EchoFrame frame;
+    frame.face = face;
+    const echo::KernelParams k = echo::make_kernel_params(labels, plane, frame, {}, {}, true);
+    return echo::synthesize_live(labels, params, k.slice, face, {});
+}
+
 // Issue 33's speckle gates (tests/echo/bmode_gates.hpp) on the live field: interpolated between
 // lattice cells, it must still give Rayleigh speckle as large as the point-spread function.
 TEST(GenerativeImage, LiveSpeckleGates)
@@ -226,10 +235,7 @@ TEST(GenerativeImage, LiveSpeckleGates)
     const echo::ScanSpec spec = echo::gates::homogeneous_spec(30, 30);
     const io::Volume labels = echo::gates::muscle_volume(pose, spec);
     const echo::ImagePlane plane{spec.width_mm, spec.depth_mm, spec.columns(), spec.rows()};
-    echo::EchoFrame frame;
-    frame.face = pose;
-    const echo::KernelParams k = echo::make_kernel_params(labels, plane, frame, {}, {}, true);
-    const echo::BModeImage img = echo::synthesize_live(labels, echo::bmode_live_params(plane, spec), k.slice, pose, {});
+    const echo::BModeImage img = live_at_rest(labels, plane, echo::bmode_live_params(plane, spec), pose);
     echo::gates::expect_speckle_gates(img, spec, "live field");
 }
 
@@ -256,11 +262,10 @@ TEST(GenerativeImage, SubSampleMotionChangesTheImageSmoothly)
     const kernels::BModeParams sweep = echo::bmode_params(echo::ScanSpec{}, v.labels);
     std::vector<echo::BModeImage> images, point_sampled;
     for (int f = 0; f <= 6; ++f) {
-        echo::EchoFrame moved = frame;
-        moved.face.position += frame.face.axis_x() * (0.01f * float(f));
-        const echo::KernelParams k = echo::make_kernel_params(v.grey, plane, moved, {}, s.patient(), true);
-        images.push_back(echo::synthesize_live(v.labels, live, k.slice, moved.face, {}));
-        point_sampled.push_back(echo::synthesize(v.labels, sweep, moved.face));
+        Pose moved = frame.face;
+        moved.position += frame.face.axis_x() * (0.01f * float(f));
+        images.push_back(live_at_rest(v.labels, plane, live, moved));
+        point_sampled.push_back(echo::synthesize(v.labels, sweep, moved));
     }
     std::vector<double> steps, point_steps;
     for (std::size_t f = 1; f < images.size(); ++f) {
@@ -308,12 +313,10 @@ TEST(GenerativeImage, ElevationalMotionDecorrelatesAsTheBeamsThickness)
     std::vector<double> first_live, first_sweep;
     double previous = 1.0;
     for (const double d : {0.0, 0.05, 0.1, 0.2, 0.3, 0.5, 0.8}) {
-        echo::EchoFrame f;
-        f.face = pose;
-        f.face.position += pose.axis_z() * float(d);
-        const echo::KernelParams k = echo::make_kernel_params(labels, plane, f, {}, {}, true);
-        const std::vector<double> l = grey(echo::synthesize_live(labels, live, k.slice, f.face, {}));
-        const std::vector<double> p = grey(echo::synthesize(labels, sweep, f.face));
+        Pose moved = pose;
+        moved.position += pose.axis_z() * float(d);
+        const std::vector<double> l = grey(live_at_rest(labels, plane, live, moved));
+        const std::vector<double> p = grey(echo::synthesize(labels, sweep, moved));
         if (d == 0) {
             first_live = l;
             first_sweep = p;
