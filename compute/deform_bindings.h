@@ -11,8 +11,9 @@
 //     the probe;
 //   - the skin under the face moved skin_shift [mm] along the beam (from the physics snapshot);
 //   - the pressure the probe puts on the skin (its force over the face, from the same snapshot)
-//     reaches depth z below the skin as the stress under a uniformly loaded rectangle in an elastic
+//     reaches depth z below the face as the stress under a uniformly loaded rectangle in an elastic
 //     half-space (Boussinesq, integrated over the face by Newmark): deep tissue feels less of it;
+//     z is where the tissue lies now, its depth at rest less what the tissue above it lost;
 //   - a vessel's lumen closes by the pressure it feels: a vein once the pressure exceeds the venous
 //     pressure, walls meeting fully; an artery hardly (its own pressure is far higher), and it
 //     widens with the pulse;

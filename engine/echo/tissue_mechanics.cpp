@@ -29,10 +29,12 @@ TissueTable tissue_mechanics(const PatientCase& patient)
     t[int(Tissue::fat)] = solid(8, 0.7f, Tissue::fat);
     t[int(Tissue::fascia)] = solid(150, 0.3f, Tissue::fascia);
     t[int(Tissue::muscle)] = solid(25, 0.5f, Tissue::muscle);
-    // the artery: its own pressure holds it open until the probe's reaching it is about half the
-    // diastolic (35 mmHg), where its wall begins to give: the sonographer's cue that the exam force
-    // is reached; it loses at most 12 % to pressure and widens 6 % with each beat (femoral distension)
-    t[int(Tissue::artery_lumen)] = lumen(kPa(35), kPa(40), 0.12f, 0.06f, Tissue::artery_lumen);
+    // the artery: its own pressure holds it open until the probe's pressure reaching it passes the
+    // diastolic (80 mmHg), where its wall begins to give: the sonographer's cue that the exam force
+    // is reached (about 12 N over the slim thigh's femoral vessels, the vein closed well before);
+    // it loses at most 12 % to pressure and widens 6 % with each beat (femoral distension). (Half
+    // the diastolic did it while the stress was taken at the tissue's depth at rest, deform_column.h.)
+    t[int(Tissue::artery_lumen)] = lumen(kPa(80), kPa(40), 0.12f, 0.06f, Tissue::artery_lumen);
     t[int(Tissue::artery_wall)] = solid(600, 0.2f, Tissue::artery_wall);
     // the vein: closes over 10 mmHg above the venous pressure, walls meeting
     t[int(Tissue::vein_lumen)] = lumen(venous, kPa(10), 1.0f, 0.0f, Tissue::vein_lumen);
