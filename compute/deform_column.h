@@ -21,9 +21,10 @@
 // Whether a scratch entry is a lumen's (a solid's compliance is never negative).
 bool is_lumen(vec4 w) { return w.x < 0.0f; }
 
-// Whether a scratch entry's step keeps its shape, so the sideways spread must not bend it: a lumen
-// that stays open (an artery) and a rigid solid (bone).
-bool holds_shape(vec4 w) { return is_lumen(w) ? w.z < DEFORM_MEETING : w.y == 0.0f; }
+// Whether a scratch entry's step is rigid (bone, and what lies below it), so the sideways spread
+// must not move it. (A lumen that stays open, an artery, keeps its shape otherwise: the map pass
+// carries it whole, deform_column_map.)
+bool is_rigid(vec4 w) { return !is_lumen(w) && w.y == 0.0f; }
 
 // What a solid step of weight g (compliance, or share) and largest strain `largest` takes of one
 // of the column's remainders [strain] (deform_column_solve, walk 4): at the remainder's `level`,
@@ -179,17 +180,17 @@ void deform_column_solve(uint c, DeformParams p)
     }
 
     // 5. each step boundary's displacement down the beam [mm] and distances [mm] to the column's
-    //    nearest lumen whose walls (nearly) meet and to its nearest step that holds its shape
+    //    nearest lumen whose walls (nearly) meet and to its nearest rigid step
     //    (moved_store, walls_store; past the column's last step, the last's), for the second pass
     float moved = shift;
-    vec2 since = vec2(1e9f);  // [mm] from the nearest above (meeting lumen, what holds its shape)
+    vec2 since = vec2(1e9f);  // [mm] from the nearest above (meeting lumen, rigid step)
     for (uint k = 0u; k < steps; ++k) {
         vec4 w = scratch_load(c, k);
         moved_store(c, k, moved);
         walls_store(c, k, since);
         float strain = is_lumen(w) ? w.z : solid_strain_after(w, stress, solved, 2u);
         moved -= strain * h;
-        since = vec2(w.z >= DEFORM_MEETING ? 0.0f : since.x + h, holds_shape(w) ? 0.0f : since.y + h);
+        since = vec2(w.z >= DEFORM_MEETING ? 0.0f : since.x + h, is_rigid(w) ? 0.0f : since.y + h);
     }
     for (uint k = steps; k <= p.max_steps; ++k) {
         moved_store(c, k, moved);
@@ -198,7 +199,7 @@ void deform_column_solve(uint c, DeformParams p)
     vec2 until = vec2(1e9f);  // [mm] to the nearest below
     for (uint k = steps; k > 0u; --k) {
         vec4 w = scratch_load(c, k - 1u);
-        until = vec2(w.z >= DEFORM_MEETING ? 0.0f : until.x + h, holds_shape(w) ? 0.0f : until.y + h);
+        until = vec2(w.z >= DEFORM_MEETING ? 0.0f : until.x + h, is_rigid(w) ? 0.0f : until.y + h);
         walls_store(c, k - 1u, min(walls_load(c, k - 1u), until));
     }
 }
@@ -207,12 +208,13 @@ void deform_column_solve(uint c, DeformParams p)
 // tissue around it along, over a width that grows with the distance from it (as a load spreads in
 // an elastic solid), so the sinking above a closed vein fades out to the sides instead of stopping
 // at its edge. What fixes a boundary's place takes no spread: the skin (which lies on the probe),
-// the deep end, and a lumen's wall, so the spread's standard deviation is DEFORM_SPREAD times the
-// distance to the nearest of them, up to DEFORM_SPREAD_MAX_MM. A lumen that closes (DEFORM_MEETING)
-// counts in its own columns only: its walls must meet, and its neighbours are what the spread
-// drags along; what holds its shape (an artery, which keeps its round lumen; bone) counts from the
-// columns around it too (looked for at 1, 2, 4, ... columns), so the tissue between it and a
-// closing vein shears gradually. `fixed_mm`: the distance to the skin or the deep end. Gaussian
+// the deep end, a closing lumen's wall and bone, so the spread's standard deviation is
+// DEFORM_SPREAD times the distance to the nearest of them, up to DEFORM_SPREAD_MAX_MM. A lumen that
+// closes (DEFORM_MEETING) counts in its own columns only: its walls must meet, and its neighbours
+// are what the spread drags along; bone counts from the columns around it too (looked for at 1, 2,
+// 4, ... columns), so the tissue between it and a closing vein shears gradually. An open lumen (an
+// artery) fixes nothing: the tissue over an artery beside a closing vein sinks with the vein's
+// (it stopped at the artery's edge, a tear from the skin down), and the artery is carried whole. `fixed_mm`: the distance to the skin or the deep end. Gaussian
 // weights at seven points over +-2 standard deviations, the neighbours interpolated.
 float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
 {
@@ -258,9 +260,18 @@ void deform_column_map(uint c, DeformParams p)
     }
     float gain = 0.0f;
     float top = skin_y + shift;  // where step k's upper boundary lies now
+    float carried = 0.0f;  // how far the spread carries the lumen the walk is in past its column's place
+    bool in_lumen = false;
     for (uint k = 0u; k < steps && r < p.rows; ++k) {
-        // the boundary below step k: (k + 1) h from the skin, (steps - k - 1) h from the deep end
-        float below = deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
+        vec4 w = scratch_load(c, k);
+        // the boundary below step k: (k + 1) h from the skin, (steps - k - 1) h from the deep end.
+        // A lumen keeps the length its own column gives it (an artery its round shape, a vein what
+        // the pressure leaves of it) and is carried whole, as far as the spread moved its upper
+        // wall, where it lies now: the tissue around it shears, not the lumen (a closing vein's
+        // walls take no spread, so it is carried nowhere)
+        if (is_lumen(w) && !in_lumen) carried = (top - skin_y - float(k) * h) - moved_load(c, k);
+        in_lumen = is_lumen(w);
+        float below = in_lumen ? moved_load(c, k + 1u) + carried : deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
         float bottom = skin_y + float(k + 1u) * h + below;
         float length = bottom - top;
         while (r < p.rows && pixel_y(r, p.pixel_y_mm) < bottom) {
@@ -269,7 +280,6 @@ void deform_column_map(uint c, DeformParams p)
             ++r;
         }
         top = max(top, bottom);  // a boundary the spread moved above the last one folds nothing back
-        vec4 w = scratch_load(c, k);
         gain += is_lumen(w) ? w.w : 0.0f;
     }
     float rest = moved_load(c, steps);  // what the column could not take up moves the tissue below

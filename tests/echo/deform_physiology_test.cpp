@@ -4,6 +4,8 @@
 // centre, before and after the probe presses with the exam's force. The clinical rule for that
 // force: press until the artery just begins to deform (kExamForceN, where our artery first loses
 // lumen); there a healthy vein is closed, an acute thrombus keeps it open, a chronic one in between.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -17,6 +19,11 @@ namespace echosim::echo {
 namespace {
 
 constexpr double kExamForceN = 12.0;  // [N] about 1.2 kg on the probe
+// the most lumen an artery that has not begun to deform shows lost: the tissue beside it sinks
+// with a closing vein and carries it down, sheared a little from column to column, and the image's
+// deform map, interpolated between its columns, rounds its edges by half a pixel a column or so
+// (at 9.6 N it shows 0.9 % lost where its own law takes 0.3 %); at the exam force it loses 3.5 %
+constexpr double kArteryStill = 0.015;
 
 struct Lumens {
     double vein = 0, artery = 0;  // [pixels]
@@ -75,7 +82,7 @@ TEST(DeformPhysiology, AtTheExamForceAHealthyVeinClosesAndTheArteryJustBeginsToD
     ASSERT_GT(e.rest.artery, 1500);
     EXPECT_NEAR(e.force_N, kExamForceN, 0.02 * kExamForceN);
     EXPECT_GE(loss(e.rest.vein, e.pressed.vein), 0.90);
-    EXPECT_GT(loss(e.rest.artery, e.pressed.artery), 0.005);  // the rule: it has begun to deform
+    EXPECT_GT(loss(e.rest.artery, e.pressed.artery), kArteryStill);  // the rule: it has begun to deform
     EXPECT_LE(loss(e.rest.artery, e.pressed.artery), 0.15);
 }
 
@@ -83,7 +90,7 @@ TEST(DeformPhysiology, BelowTheExamForceTheArteryKeepsItsLumen)
 {
     // the rule's other half: a fifth less force and the artery has not begun to deform yet
     const Exam e = examine(Case::healthy, 0.8 * kExamForceN);
-    EXPECT_LT(loss(e.rest.artery, e.pressed.artery), 0.005);
+    EXPECT_LT(loss(e.rest.artery, e.pressed.artery), kArteryStill);
 }
 
 TEST(DeformPhysiology, AnAcuteThrombusKeepsTheVeinOpen)
@@ -118,6 +125,43 @@ TEST(DeformPhysiology, ADeeperPressGivesALargerForceAndASmallerVeinAtTheSameMome
         last_force = view.probe_force_N;
         last_vein = vein;
     }
+}
+
+TEST(DeformPhysiology, TheTissueOverAnArteryBesideAClosingVeinSinksWithItWithoutATear)
+{
+    // FV 8 cm, where the artery lies over the vein's medial edge: pressed to the exam force, the
+    // vein closes and the tissue over it sinks some 12 mm, where the tissue over the artery, in
+    // its own columns, sinks 4 to 5. The artery once fixed the sideways spread as bone does: the
+    // displacement jumped 1.7 mm from one map column (0.3 mm) to the next at its edge, a tear from
+    // the skin down in the image. Now the tissue around it shears and the artery is carried whole.
+    session::Session s;
+    const scene::LegModel leg;
+    const Phantom phantom(leg, Case::healthy);
+    const Pose station = phantom.transverse_probe_pose(VeinSegment::fv, 8.0);
+    const test::LabelledVolume v = test::phantom_volume(leg, Case::healthy, station, 0.2);
+    s.press_to_force(station, kExamForceN);
+    const EchoImage image = render_echo_cpu(v.grey, &v.labels, s.image_plane(), *s.view().echo, {}, s.patient(), true);
+    ASSERT_FALSE(image.map.empty());
+    const double pixel_y = s.image_plane().pixel_y_mm();
+    auto solid = [&](std::uint32_t row, std::uint32_t map_column) {
+        const std::uint32_t c = std::min(image.columns - 1, map_column * image.columns / image.map_columns);
+        const auto t = Tissue(image.labels[std::size_t(row) * image.columns + c]);
+        return t != Tissue::artery_lumen && t != Tissue::artery_wall && t != Tissue::vein_lumen && t != Tissue::vein_wall &&
+               t != Tissue::saphenous_lumen;
+    };
+    auto sunk = [&](std::uint32_t row, std::uint32_t map_column) {
+        return (row + 0.5) * pixel_y - image.map[2 * (std::size_t(row) * image.map_columns + map_column)];
+    };
+    // the solid tissue from 3 to 17 mm deep: over and beside the artery, above the closed vein
+    double worst = 0, vein_sunk = 0;
+    for (std::uint32_t row = std::uint32_t(3.0 / pixel_y); row < std::uint32_t(17.0 / pixel_y); ++row)
+        for (std::uint32_t m = 0; m + 1 < image.map_columns; ++m) {
+            vein_sunk = std::max(vein_sunk, sunk(row, m));
+            if (solid(row, m) && solid(row, m + 1)) worst = std::max(worst, std::abs(sunk(row, m) - sunk(row, m + 1)));
+        }
+    std::printf("tissue sunk up to %.1f mm; the largest step between map columns %.2f mm\n", vein_sunk, worst);
+    EXPECT_GT(vein_sunk, 10.0);  // the press is there
+    EXPECT_LT(worst, 1.2);       // 0.9 now, 1.7 with the tear
 }
 
 }  // namespace
