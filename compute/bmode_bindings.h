@@ -261,6 +261,22 @@ KERNEL_FN vec2 bmode_scattered(vec3 p, vec3 z, uint tissue, bool live_field BMOD
     return f;
 }
 
+// Live frames (bmode_live.comp, echo::synthesize_live): where a vein's walls met under the probe,
+// the deform map skips its lumen from one row to the next. The pixel there shows the lumen's last
+// trace, so the beam pass puts the wall's echo on either side of it, one pixel apart, which the
+// pulse's length makes one bright line: the two walls' echoes become one, as a sonographer sees a
+// vein close (without it the closed vein vanished into the speckle). `skipped_mm`: how much rest
+// depth the map skipped from the row above to this one; `middle`: the tissue halfway across it.
+// A closing lumen only (vein, great saphenous vein: echo::Tissue's codes); compressed fat, the most
+// squeezed solid, skips a third of a millimetre a row.
+#define BMODE_COAPTED_SKIP_MM 1.0f
+#define BMODE_VEIN_LUMEN 7u
+#define BMODE_SAPHENOUS_LUMEN 10u
+KERNEL_FN uint bmode_coapted(uint t, uint middle, float skipped_mm)
+{
+    return skipped_mm > BMODE_COAPTED_SKIP_MM && (middle == BMODE_VEIN_LUMEN || middle == BMODE_SAPHENOUS_LUMEN) ? middle : t;
+}
+
 // Pass 2, one pixel down a column: the field of a pixel of tissue `t` (the pixel above of `above`;
 // `first`: the top row) scaled by the amplitude `transmitted` that reaches it and comes back, plus
 // the specular echo where the tissue changes; then `transmitted` on past it: less what the

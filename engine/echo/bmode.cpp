@@ -37,7 +37,7 @@ constexpr std::array<Acoustics, kTissueCount> kAcoustics = {{
     {0.02f, 1.61f, 0.15f},   // artery lumen (blood)
     {1.5f, 1.72f, 1.0f},     // artery wall
     {0.02f, 1.61f, 0.15f},   // vein lumen
-    {1.2f, 1.70f, 1.0f},     // vein wall
+    {1.2f, 1.76f, 1.0f},     // vein wall: collagen, denser than muscle (its intima echoes)
     {0.12f, 1.63f, 0.3f},    // acute thrombus: hypo-echoic
     {0.02f, 1.61f, 0.15f},   // saphenous lumen
     {2.0f, 7.80f, 20.0f},    // bone cortex
@@ -46,7 +46,11 @@ constexpr std::array<Acoustics, kTissueCount> kAcoustics = {{
     {1.8f, 1.74f, 1.2f},     // a chronic thrombus' scarred vein wall: thick, bright
     {0.1f, 1.62f, 0.5f},     // lymph node cortex: hypo-echoic
 }};
-constexpr float kSpecular = 40.0f;  // specular echo relative to a unit scatterer (about 20 dB over speckle)
+// a specular echo relative to a unit scatterer: an interface of soft tissues (reflection 0.02 to
+// 0.05: fat and muscle, blood and a vessel's wall) 10 to 18 dB over the speckle, as a fascia or a
+// vessel's wall shows on a scanner (40, 20 dB over it at a perfect reflector, left them in the
+// speckle: no fascial plane, and a vein pressed closed vanished where its walls meet as one line)
+constexpr float kSpecular = 160.0f;
 constexpr double kLattice = 0.1;    // scatterer lattice [mm]
 // the live frames' elevational planes' spacing [mm]: one lattice step, as the sweeps'. The
 // interpolated field (bmode_smooth_scatterer) is as good as independent over two steps, but planes
@@ -54,6 +58,8 @@ constexpr double kLattice = 0.1;    // scatterer lattice [mm]
 // the beam's thickness keeps it over about a millimetre: 17 planes at the probe's 1.2 mm slice
 constexpr double kLiveElevationStepMm = 0.1;
 static_assert(kTissueCount <= BMODE_MAX_TISSUES, "the kernels' tissue tables hold BMODE_MAX_TISSUES codes");
+static_assert(BMODE_VEIN_LUMEN == unsigned(Tissue::vein_lumen) && BMODE_SAPHENOUS_LUMEN == unsigned(Tissue::saphenous_lumen),
+              "bmode_coapted's closing lumens are echo::Tissue's");
 
 std::vector<float> gaussian(double fwhm_mm, double pixel_mm)
 {
@@ -301,7 +307,11 @@ BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams&
     const kernels::BModePose f = bmode_pose(pressed);
     return run_twin(params, f, [&](std::uint32_t c, std::uint32_t r) {
         const SliceSample s = slice_sample(slice, map, c, r);
-        return PixelSource{kernels::bmode_live_world(f, s.x, s.map.x), label_at(labels, s.index)};
+        const float above_y = r > 0 ? slice_sample(slice, map, c, r - 1).map.x : s.map.x;
+        const float middle_y = 0.5f * (s.map.x + above_y);
+        const glm::vec3 middle = glm::vec3(slice.probe_to_index * glm::vec4(s.x, middle_y, 0.0f, 1.0f));
+        const std::uint32_t t = kernels::bmode_coapted(label_at(labels, s.index), label_at(labels, middle), s.map.x - above_y);
+        return PixelSource{kernels::bmode_live_world(f, s.x, s.map.x), t};
     }, true);
 }
 

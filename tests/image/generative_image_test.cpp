@@ -331,5 +331,45 @@ TEST(GenerativeImage, ElevationalMotionDecorrelatesAsTheBeamsThickness)
     EXPECT_LE(previous, 0.3);  // by 0.8 mm the speckle is another
 }
 
+TEST(GenerativeImage, AVeinPressedClosedShowsItsWallsMetAsOneBrightLine)
+{
+    // The healthy vein at the patch centre pressed closed at the exam's 12 N: where its walls met,
+    // the deform map skips its lumen from one pixel row to the next. The image there shows the two
+    // walls' echoes become one bright line, as a scanner shows a vein close (the specular echoes
+    // 10 to 18 dB over the speckle, and the lumen's last trace at the seam for them to border);
+    // before, the closed vein vanished into the speckle. Measured on the CPU twin's displayed grey
+    // (the GPU is held to it above): the seam's three rows against the tissue 1 to 3 mm above and
+    // below it, in the columns where the map skips over 3 mm of lumen.
+    session::Session s;
+    const scene::LegModel leg;
+    const test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, s.probe().rest);
+    s.press_to_force(s.probe().rest, 12.0);
+    const echo::EchoImage img = echo::render_echo_cpu(v.grey, &v.labels, s.image_plane(), *s.view().echo, {}, s.patient(), true, kGenerative);
+    ASSERT_FALSE(img.map.empty());
+    const double pixel_y = s.image_plane().pixel_y_mm();
+    const auto rows_per_mm = std::uint32_t(std::lround(1.0 / pixel_y));
+    auto grey = [&](std::uint32_t c, std::uint32_t r) { return double(img.rgba[std::size_t(r) * img.columns + c] & 0xffu); };
+    double seam = 0, around = 0;
+    int columns = 0;
+    for (std::uint32_t c = 0; c < img.columns; ++c) {
+        const std::uint32_t m = c * img.map_columns / img.columns;
+        for (std::uint32_t r = 3 * rows_per_mm; r + 3 * rows_per_mm < img.rows; ++r) {
+            const float skipped = img.map[2 * (std::size_t(r) * img.map_columns + m)] - img.map[2 * (std::size_t(r - 1) * img.map_columns + m)];
+            if (skipped < 3.0f) continue;
+            for (std::uint32_t d = 0; d < 3; ++d) seam += grey(c, r - 1 + d) / 3;
+            double side = 0;
+            for (std::uint32_t d = rows_per_mm; d < 3 * rows_per_mm; ++d) side += grey(c, r - d) + grey(c, r + d);
+            around += side / (4 * rows_per_mm);
+            ++columns;
+            break;
+        }
+    }
+    ASSERT_GT(columns, 40) << "the vein did not close under the probe";  // a 9 mm vein is 90 columns
+    seam /= columns;
+    around /= columns;
+    std::printf("closed over %d columns: the seam's grey %.1f, the tissue around it %.1f\n", columns, seam, around);
+    EXPECT_GT(seam, around + 40.0);  // 52 now; 22 with the old specular strength, 26 without the trace
+}
+
 }  // namespace
 }  // namespace echosim::image
