@@ -42,7 +42,10 @@ void main()
                          : source_y;
     }
     const float x = pixel_x(c, s.pixel_x_mm, s.width_mm);
-    const uint t = bmode_coapted(live_tissue(x, source_y, s), live_tissue(x, 0.5 * (source_y + above_y), s), source_y - above_y);
+    uint t = live_tissue(x, source_y, s);
+    // (the tissue halfway across a skip looked up only where the map skips: a CPU device's lanes
+    // then fetch it only where some lane of theirs needs it)
+    if (source_y - above_y > BMODE_COAPTED_SKIP_MM) t = bmode_coapted(t, live_tissue(x, 0.5 * (source_y + above_y), s), source_y - above_y);
     const uint at = r * k.columns + c;
     field[at] = bmode_scattered(bmode_live_world(live.pose, x, source_y), vec3(live.pose.z), t, true);
     labels[at] = t;
