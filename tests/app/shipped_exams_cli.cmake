@@ -35,3 +35,41 @@ foreach(id healthy cfv-fv-acute fv-isolated-acute fv-chronic popliteal-acute lym
   endforeach()
   message(STATUS "${id}: passed, 0 errors flagged, every station's lumen as its truth")
 endforeach()
+
+# The large patient's error scripts (assets/cases/trajectories/large-patient.KIND.csv), each flagged
+# for exactly its own error at the SFJ and nothing else: its presses sit within a few newtons of the
+# case's excessive 18 N, and the seventeenth session found every one of them flagging an excessive
+# press at FV 20 or 22 cm that the script did not mean (their copies of the correct exam's presses).
+foreach(pair "artery:wrong-vessel" "excessive:excessive-force" "light-press:too-little-pressure,wrong-call"
+        "oblique:oblique-plane" "skip:skipped-station")
+  string(FIND "${pair}" ":" colon)
+  string(SUBSTRING "${pair}" 0 ${colon} kind)
+  math(EXPR after "${colon} + 1")
+  string(SUBSTRING "${pair}" ${after} -1 expected)
+  string(REPLACE "," ";" expected "${expected}")
+  set(out_dir ${WORK}/runs/large-patient-${kind})
+  execute_process(COMMAND ${ECHOSIM} exam --case large-patient --coarse --frames-per-s 0 --no-records
+                          --trajectory ${CASES}/trajectories/large-patient.${kind}.csv --out ${out_dir}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "large-patient ${kind} (exit ${rc}):\n${out}${err}")
+  endif()
+  file(READ ${out_dir}/report.json report)
+  string(JSON n LENGTH "${report}" errors)
+  set(kinds "")
+  if(n GREATER 0)
+    math(EXPR last "${n} - 1")
+    foreach(i RANGE ${last})
+      string(JSON k GET "${report}" errors ${i} kind)
+      string(JSON station GET "${report}" errors ${i} station)
+      if(NOT station STREQUAL "SFJ")
+        message(FATAL_ERROR "large-patient ${kind}: flagged ${k} at ${station}, not the script's station:\n${out}")
+      endif()
+      list(APPEND kinds ${k})
+    endforeach()
+  endif()
+  if(NOT kinds STREQUAL expected)
+    message(FATAL_ERROR "large-patient ${kind}: flagged '${kinds}', expected '${expected}':\n${out}")
+  endif()
+  message(STATUS "large-patient ${kind}: ${kinds} at the SFJ, nothing else")
+endforeach()
