@@ -6,8 +6,9 @@
 // pixel of the pressed image, where its tissue rests (the deform map's source depth at the pixel's
 // lateral position, read between the map's columns as the slice stage reads it: map_tap,
 // map_between), the tissue there (the case's labels, nearest voxel; where the map skips a closed
-// vein's lumen, its last trace: bmode_coapted) and the scatterer field of the rest position. So the speckle stays attached to the tissue as it moves, and compresses as a real
-// image's does: the scatterers come closer, the point-spread function does not shrink. The CPU
+// vein's lumen, its last trace: bmode_coapted) and the scatterer field of the rest position. So the
+// speckle stays attached to the tissue as it moves, and compresses as a real image's does: the
+// scatterers come closer, the point-spread function does not shrink. The CPU
 // twin is echo::synthesize_live (engine/echo/bmode.cpp), which calls the same functions.
 layout(local_size_x = BMODE_SCATTER_GROUP_X, local_size_y = BMODE_SCATTER_GROUP_Y) in;
 layout(std140, binding = BMODE_LIVE_FRAME_BINDING) uniform Live { BModeLiveFrame live; };

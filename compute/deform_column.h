@@ -214,8 +214,9 @@ void deform_column_solve(uint c, DeformParams p)
 // are what the spread drags along; bone counts from the columns around it too (looked for at 1, 2,
 // 4, ... columns), so the tissue between it and a closing vein shears gradually. An open lumen (an
 // artery) fixes nothing: the tissue over an artery beside a closing vein sinks with the vein's
-// (it stopped at the artery's edge, a tear from the skin down), and the artery is carried whole. `fixed_mm`: the distance to the skin or the deep end. Gaussian
-// weights at seven points over +-2 standard deviations, the neighbours interpolated.
+// (it stopped at the artery's edge, a tear from the skin down), and the artery is carried whole.
+// `fixed_mm`: the distance to the skin or the deep end. Gaussian weights at seven points over +-2
+// standard deviations, the neighbours interpolated.
 float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
 {
     float own = moved_load(c, k);
