@@ -160,7 +160,11 @@ struct DeepStackDevice : device::NullDevice {
 };
 
 // The loop's stack is faulted in at its start, not by its first deep tick: shown with the memory
-// left unlocked (a lock maps a new thread's whole stack up front, which would hide the pre-faulting)
+// left unlocked (a lock maps a new thread's whole stack up front, which would hide the pre-faulting).
+// Unlocked, the thread's count also takes what else it touches first, which the loop does not
+// pre-fault: under `ctest -j2` a run now and then counted 1 (a page of code first run late, at a
+// guess). Without the pre-faulting the deep reads fault 48 pages (192 KiB): the bound is far below
+// that and above the stray one. Locked, as the simulator runs it, the soak holds the count at 0.
 TEST(RealtimeThread, TheLoopsStackIsFaultedInBeforeItsFirstTick)
 {
     if (kSanitized) GTEST_SKIP() << "a sanitizer's shadow of the stack is mapped on its own schedule";
@@ -173,7 +177,7 @@ TEST(RealtimeThread, TheLoopsStackIsFaultedInBeforeItsFirstTick)
     EXPECT_FALSE(loop.memory_locked());
     while (loop.ticks() < 200) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     loop.stop();
-    EXPECT_EQ(loop.stats().page_faults, 0) << "the deep ticks faulted in the loop's stack";
+    EXPECT_LT(loop.stats().page_faults, 4) << "the deep ticks faulted in the loop's stack";
 }
 
 TEST(MemoryLock, HeldOrSaysWhyAndLetsGo)
