@@ -34,19 +34,7 @@ function(exam name scenario style)
   message(STATUS "${name}: ${last_output}")
 endfunction()
 
-# the errors report.json flags, as a list of kinds
-function(error_kinds json out)
-  string(JSON n LENGTH "${json}" errors)
-  set(kinds "")
-  if(n GREATER 0)
-    math(EXPR last "${n} - 1")
-    foreach(i RANGE ${last})
-      string(JSON k GET "${json}" errors ${i} kind)
-      list(APPEND kinds ${k})
-    endforeach()
-  endif()
-  set(${out} "${kinds}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/report_errors.cmake)
 
 # every station's collapse: those in `open_names` must stay open (ratio > 0.5), the others collapse
 # (<= 0.2: the coarse volume's 0.6 mm labels blur a closed 8 mm vein's seam over a voxel or two;
@@ -71,7 +59,7 @@ endfunction()
 set(three ${CASES_TEST}/healthy-three-point.json)
 
 exam(correct ${three} correct)
-error_kinds("${report}" kinds)
+report_errors("${report}" kind kinds)
 if(NOT kinds STREQUAL "")
   message(FATAL_ERROR "the correct exam flagged: ${kinds}")
 endif()
@@ -93,7 +81,7 @@ foreach(pair "skip=skipped-station" "light-press=too-little-pressure;wrong-call"
   list(GET parts 0 style)
   list(SUBLIST parts 1 -1 expected)
   exam(${style} ${three} ${style})
-  error_kinds("${report}" kinds)
+  report_errors("${report}" kind kinds)
   list(SORT kinds)
   list(SORT expected)
   if(NOT kinds STREQUAL expected)
