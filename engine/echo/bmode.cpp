@@ -308,9 +308,12 @@ BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams&
     return run_twin(params, f, [&](std::uint32_t c, std::uint32_t r) {
         const SliceSample s = slice_sample(slice, map, c, r);
         const float above_y = r > 0 ? slice_sample(slice, map, c, r - 1).map.x : s.map.x;
-        const float middle_y = 0.5f * (s.map.x + above_y);
-        const glm::vec3 middle = glm::vec3(slice.probe_to_index * glm::vec4(s.x, middle_y, 0.0f, 1.0f));
-        const std::uint32_t t = kernels::bmode_coapted(label_at(labels, s.index), label_at(labels, middle), s.map.x - above_y);
+        std::uint32_t t = label_at(labels, s.index);
+        // (as the kernel: the tissue halfway across a skip looked up only where the map skips)
+        if (s.map.x - above_y > BMODE_COAPTED_SKIP_MM) {
+            const glm::vec3 middle = glm::vec3(slice.probe_to_index * glm::vec4(s.x, 0.5f * (s.map.x + above_y), 0.0f, 1.0f));
+            t = kernels::bmode_coapted(t, label_at(labels, middle), s.map.x - above_y);
+        }
         return PixelSource{kernels::bmode_live_world(f, s.x, s.map.x), t};
     }, true);
 }
