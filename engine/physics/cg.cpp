@@ -122,7 +122,7 @@ CgResult conjugate_gradient(const CompiledModel& model, const GridSystem& g, CgV
     });
     const double rhs_norm = std::max(std::sqrt(bb), 1e-30);
     // the residual is a momentum (b = h f): the absolute floor on the force is h times it
-    const double stop_rr = std::pow(std::max(options.cg_tolerance * rhs_norm, options.time_step * options.cg_absolute_tolerance_N), 2);
+    const double stop_rr = std::pow(std::max(options.cg_tolerance * rhs_norm, g.h * options.cg_absolute_tolerance_N), 2);
 
     for (; out.iterations < options.cg_max_iterations; ++out.iterations) {
         out.relative_residual = std::sqrt(rr) / rhs_norm;

@@ -129,7 +129,13 @@ ProductScratch make_product_scratch(const GridLayout& grid, int parts)
 
 void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem& g, ForkJoin& team)
 {
-    const double h = model.options.time_step, h2 = h * h;
+    prepare_system(model, s, g, team, model.options.time_step);
+}
+
+void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem& g, ForkJoin& team, double h)
+{
+    const double h2 = h * h;
+    g.h = h;
     const tissue::TissueModel& tissue = model.tissue;
     const GridLayout& grid = model.grid;
     const std::size_t n = grid.n;

@@ -46,6 +46,7 @@ struct GridSystem {
     // zero at fixed nodes
     std::vector<float> inverse;
     std::array<float, 3> axis{0, 1, 0};  // the probe axis the contacts push along
+    double h = 0;                        // the step the system was prepared for [s]
     std::vector<ContactTerm> contacts;
     // The nodes the contacts touch, each once: the samples share their nodes (some 1,300 samples,
     // a third as many nodes), so the product reads each node's p and adds to its row once, from a
@@ -71,6 +72,8 @@ GridSystem make_grid_system(const GridLayout& grid);
 // model.options.time_step, from the force stage's linearisation (state.spring_linearisation,
 // state.normal_stiffness) and state.contacts. The work is shared by `team`.
 void prepare_system(const CompiledModel& model, const TissueState& state, GridSystem& system, ForkJoin& team);
+// The same for a step of h seconds (a stride of several time steps: PhysicsOptions::clear_stride).
+void prepare_system(const CompiledModel& model, const TissueState& state, GridSystem& system, ForkJoin& team, double h);
 
 // out = A p over plane vectors of 3n floats; returns p . out (accumulated in double). The rows are
 // shared by `team`, each part with its row buffers scratch.rows[part].

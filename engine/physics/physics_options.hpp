@@ -25,6 +25,17 @@ struct PhysicsOptions {
     // 10 steps of 1 ms, since the 2,500-node patch's stiff penalty contact is not accurate at one
     // 10 ms step (a probe pressing at 20 mm/s meets 28 N where 7 N is right: bench/RESULTS.md).
     int steps_per_publish = 1;
+    // Lock-step only (PhysicsRunner::step_to: exams, headless tools, tests): while nothing touches
+    // the tissue and the probe's face stays stride_clearance_mm clear of the skin where it is and
+    // where the step takes it, one step covers up to clear_stride time steps (never past the time
+    // the caller steps to). A lifted probe carried between stations is half an exam's time, and
+    // the tissue relaxing under it was stepped at 1 kHz for the contact's sake alone: the relaxation
+    // is slow (its viscous tail, tenths of a second), which the implicit step follows as well at
+    // 4 ms; nothing is pressed, so nothing an exam scores changes. The probe's sweep per step grows
+    // with the stride (probe_sweep.hpp), and the clearance is checked at both ends of it. 1: off.
+    // The real-time thread always steps time_step (its period is the wall clock's).
+    int clear_stride = 4;
+    double stride_clearance_mm = 2.0;
     Integrator integrator = Integrator::implicit_euler;
     JacobianMode jacobian = JacobianMode::updated;
     // the patient lies supine, so gravity points posterior: +y in LPS [mm/s^2]

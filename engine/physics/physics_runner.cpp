@@ -1,5 +1,6 @@
 #include "physics/physics_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -59,12 +60,13 @@ bool PhysicsRunner::command(const ProbeCommand& c)
     return true;
 }
 
-void PhysicsRunner::step_once()
+void PhysicsRunner::step_once(int stride)
 {
+    const double h = model_->options.time_step * stride;
     for (int i = 0; i < model_->options.steps_per_publish; ++i) {
-        state_.probe = swept_probe(state_.probe, in_.read(), model_->options.time_step);
-        step(*model_, state_, team_);
-        if (state_.last.asleep) asleep_.fetch_add(1, std::memory_order_relaxed);
+        state_.probe = swept_probe(state_.probe, in_.read(), h, stride * kMaxProbeMoveMm);
+        step(*model_, state_, team_, stride);
+        if (state_.last.asleep) asleep_.fetch_add(stride, std::memory_order_relaxed);
     }
 
     SurfaceSnapshot& s = out_.write_slot();
@@ -78,15 +80,32 @@ void PhysicsRunner::step_once()
     out_.publish();
     contact_out_.write_slot() = local_contact_model(*model_, state_);
     contact_out_.publish();
-    steps_.fetch_add(1, std::memory_order_relaxed);
+    steps_.fetch_add(stride, std::memory_order_relaxed);  // (a publish of steps_per_publish counts one, as ever)
+    if (stride > 1) strides_.fetch_add(1, std::memory_order_relaxed);
     if (after_step_) after_step_(state_.steps);
 }
 
-void PhysicsRunner::step_to(double t)
+void PhysicsRunner::step_to(double t) { step_to(t, t); }
+
+void PhysicsRunner::step_to(double t, double horizon)
 {
     if (running_) throw std::logic_error("PhysicsRunner::step_to while the physics thread runs");
     const double period = model_->options.time_step * model_->options.steps_per_publish;
-    while (state_.time + 0.5 * period < t) step_once();
+    const double until = std::max(t, horizon);
+    while (state_.time + 0.5 * period < t) step_once(stride_before(until));
+}
+
+int PhysicsRunner::stride_before(double until)
+{
+    const PhysicsOptions& o = model_->options;
+    // whole time steps left (rounded as step_to rounds: a step may end half a step past)
+    const double room = std::floor((until - state_.time) / o.time_step + 0.5);
+    const int most = int(std::clamp(room, 1.0, double(std::max(1, o.clear_stride))));
+    if (most == 1 || o.steps_per_publish != 1 || state_.last.contacts != 0) return 1;
+    const contact::ProbeState next = swept_probe(state_.probe, in_.read(), most * o.time_step, most * kMaxProbeMoveMm);
+    const bool clear = probe_clear_by(model_->probe, state_.probe, state_.x, o.stride_clearance_mm) &&
+                       probe_clear_by(model_->probe, next, state_.x, o.stride_clearance_mm);
+    return clear ? most : 1;
 }
 
 void PhysicsRunner::replace_model(std::shared_ptr<const CompiledModel> model)

@@ -50,10 +50,11 @@ struct SurfaceSnapshot {
 };
 
 struct RunnerStats {
-    std::int64_t steps = 0;
+    std::int64_t steps = 0;     // time steps stepped (a stride, below, counts as the time steps it covers)
     std::int64_t overruns = 0;  // steps that started later than one period after they were due
     std::int64_t asleep = 0;    // steps the tissue slept through (PhysicsOptions::sleep_speed)
     std::int64_t refused_commands = 0;  // probe commands with a NaN, infinity or bad rotation
+    std::int64_t strides = 0;   // steps that covered several time steps at once (PhysicsOptions::clear_stride)
 };
 
 class PhysicsRunner {
@@ -75,13 +76,19 @@ public:
     // the haptic thread (one reader): the skin under the probe, to render between steps
     const LocalContactModel& latest_contact() { return contact_out_.read(); }
 
-    // headless: step in this thread until the simulated time reaches t (not while running)
+    // headless: step in this thread until the simulated time reaches t (not while running). While
+    // the probe is clear of the skin a step may cover several time steps
+    // (PhysicsOptions::clear_stride), ending at t at the latest, or at `horizon` when that is later:
+    // a caller that steps on to a known time in small pieces (the session's lock-step haptic
+    // ticks, 1 ms each, within a frame's advance) lets the physics run ahead of the piece, to the
+    // frame's end, while nothing touches the skin; the next step_to calls then find it there.
     void step_to(double t);
+    void step_to(double t, double horizon);
 
     // real time: a thread stepping every options.time_step of wall-clock time
     void start();
     void stop();
-    RunnerStats stats() const { return {steps_.load(), overruns_.load(), asleep_.load(), refused_.load()}; }
+    RunnerStats stats() const { return {steps_.load(), overruns_.load(), asleep_.load(), refused_.load(), strides_.load()}; }
     // Runs in the stepping thread after each step is published, with the step's number: for
     // instrumentation, and for the test that stalls the physics to show the haptic loop does not
     // wait for it. Set it while no thread steps.
@@ -106,7 +113,9 @@ public:
     const tissue::TissueModel& model() const { return model_->tissue; }
 
 private:
-    void step_once();
+    void step_once(int stride = 1);
+    // the time steps the next step may cover, before `until` (lock-step: step_to)
+    int stride_before(double until);
 
     std::shared_ptr<const CompiledModel> model_;
     TissueState state_;  // owned by whichever thread steps: the physics thread while it runs
@@ -117,7 +126,7 @@ private:
     std::function<void(std::int64_t)> after_step_;
     std::thread thread_;
     std::atomic<bool> running_{false};
-    std::atomic<std::int64_t> steps_{0}, overruns_{0}, asleep_{0}, refused_{0};
+    std::atomic<std::int64_t> steps_{0}, overruns_{0}, asleep_{0}, refused_{0}, strides_{0};
 };
 
 }  // namespace echosim::physics

@@ -20,7 +20,17 @@ inline constexpr double kMaxProbeMoveMm = 0.5;
 // deepest press (session::Session::kMaxPressMm, 25 mm) with room.
 inline constexpr double kProbeEntryMm = 30.0;
 
-// The probe for the next step of `time_step` [s], from `now` towards `commanded`.
-contact::ProbeState swept_probe(const contact::ProbeState& now, const contact::ProbeState& commanded, double time_step);
+// The probe for the next step of `time_step` [s], from `now` towards `commanded`, moved at most
+// `max_move_mm` (a step of several time steps, PhysicsOptions::clear_stride, moves as far as they
+// would).
+contact::ProbeState swept_probe(const contact::ProbeState& now, const contact::ProbeState& commanded, double time_step,
+                                double max_move_mm = kMaxProbeMoveMm);
+
+// Whether no node of the skin at positions `x` (3 per node) lies within `clearance_mm` of the
+// probe's face or body: in its frame, across the face's width and thickness widened by the
+// clearance, from behind its body to the clearance in front of the face. An inactive probe is
+// clear. A few microseconds for the 2,500-node patch, and it writes nothing.
+bool probe_clear_by(const contact::ProbeGeometry& geometry, const contact::ProbeState& probe, const Eigen::VectorXd& x,
+                    double clearance_mm);
 
 }  // namespace echosim::physics

@@ -14,9 +14,8 @@ namespace echosim::physics {
 namespace {
 
 // The right-hand side h (f - h K v), zero at fixed nodes, into the solver's planes.
-void right_hand_side(const CompiledModel& model, TissueState& s, ForkJoin& team)
+void right_hand_side(const CompiledModel& model, TissueState& s, ForkJoin& team, double h)
 {
-    const double h = model.options.time_step;
     const std::size_t n = model.grid.n;
     float* rhs = s.cg.rhs.data();
     team.run([&](int part) {
@@ -43,9 +42,8 @@ struct Advanced {
 };
 
 // x += h v, fixed nodes held still.
-Advanced advance(const CompiledModel& model, TissueState& s, ForkJoin& team)
+Advanced advance(const CompiledModel& model, TissueState& s, ForkJoin& team, double h)
 {
-    const double h = model.options.time_step;
     const double limit2 = model.options.max_speed * model.options.max_speed;
     std::array<Advanced, ForkJoin::kMaxParts> parts{};
     team.run([&](int part) {
@@ -103,12 +101,12 @@ bool sleeps(const CompiledModel& model, TissueState& s)
 
 // After a step: how long the tissue has been still, under the same load and the probe it was still
 // under (or none touching it: where an untouching probe goes does not matter).
-void track_stillness(const CompiledModel& model, TissueState& s, double max_speed2)
+void track_stillness(const CompiledModel& model, TissueState& s, double max_speed2, double h)
 {
     const double v = model.options.sleep_speed;
     const bool same_load = s.external == s.still_external;
     if (max_speed2 <= v * v && same_load && (s.last.contacts == 0 || probe_still(model, s.probe, s.still_probe))) {
-        s.still_for += model.options.time_step;
+        s.still_for += h;
         return;
     }
     s.still_for = 0;
@@ -130,16 +128,19 @@ void check_wiring(const CompiledModel& model, const TissueState& s, const ForkJo
 
 }  // namespace
 
-void step(const CompiledModel& model, TissueState& s, ForkJoin& team)
+void step(const CompiledModel& model, TissueState& s, ForkJoin& team) { step(model, s, team, 1); }
+
+void step(const CompiledModel& model, TissueState& s, ForkJoin& team, int stride)
 {
     check_wiring(model, s, team);
+    if (stride < 1) throw std::invalid_argument("physics step: a stride of " + std::to_string(stride) + " time steps");
     const PhysicsOptions& options = model.options;
-    const double h = options.time_step;
+    const double h = options.time_step * stride;
     const bool relinearise = options.jacobian == JacobianMode::updated || !s.constant_jacobian_ready;
     if (sleeps(model, s)) {
         if (!s.last.asleep) s.v.setZero();  // at rest, as it falls asleep (as Box2D's bodies do)
         s.time += h;
-        ++s.steps;
+        s.steps += stride;
         s.last.asleep = true;
         s.last.cg_iterations = 0;  // the contacts and the probe's force stay as they were
         return;
@@ -155,8 +156,8 @@ void step(const CompiledModel& model, TissueState& s, ForkJoin& team)
     // 3: integrate
     if (options.integrator == Integrator::implicit_euler) {
         contact::add_contact_stiffness_product(s.contacts, s.v, s.stiffness_v);
-        right_hand_side(model, s, team);
-        prepare_system(model, s, s.system, team);
+        right_hand_side(model, s, team, h);
+        prepare_system(model, s, s.system, team, h);
         const CgResult cg = conjugate_gradient(model, s.system, s.cg, team);
         s.last.cg_iterations = cg.iterations;
         s.last.cg_residual = cg.relative_residual;
@@ -169,15 +170,15 @@ void step(const CompiledModel& model, TissueState& s, ForkJoin& team)
     }
 
     // 4: positions, and the guard
-    const Advanced advanced = advance(model, s, team);
+    const Advanced advanced = advance(model, s, team, h);
     s.time += h;
-    ++s.steps;
+    s.steps += stride;
     if (advanced.exploded) {
         reset_to_rest(model, s);
         ++s.resets;
     }
     else
-        track_stillness(model, s, advanced.max_speed2);
+        track_stillness(model, s, advanced.max_speed2, h);
 }
 
 }  // namespace echosim::physics

@@ -21,5 +21,9 @@ namespace echosim::physics {
 // entry, before anything is touched (std::invalid_argument: a wiring error, not a run-time
 // condition; the step itself never throws and allocates nothing).
 void step(const CompiledModel& model, TissueState& state, ForkJoin& team);
+// One step of `stride` time steps at once (stride * options.time_step seconds; state.steps counts
+// it as `stride`): what PhysicsRunner::step_to takes while the probe is clear of the skin
+// (PhysicsOptions::clear_stride). std::invalid_argument for a stride below 1.
+void step(const CompiledModel& model, TissueState& state, ForkJoin& team, int stride);
 
 }  // namespace echosim::physics

@@ -291,7 +291,9 @@ void Session::advance(double dt)
             while (haptic_time_ + h <= end + 1e-9) {
                 haptic_time_ += h;
                 haptics_->tick(haptic_time_);
-                physics_.step_to(haptic_time_);
+                // the physics may run ahead to the advance's end while the probe is clear of the
+                // skin (PhysicsOptions::clear_stride): the ticks then read its "no contact" model
+                physics_.step_to(haptic_time_, end);
             }
             time_ = end;
         } else {

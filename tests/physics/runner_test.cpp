@@ -43,7 +43,8 @@ TEST(TripleBuffer, ReaderSeesTheLatestWholeValue)
 TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
 {
     const tissue::TissueModel m = test::shipped_model(2);
-    const PhysicsOptions o;
+    PhysicsOptions o;
+    o.clear_stride = 1;  // by hand is a time step at a time (strides: the test after this one)
     const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
     const ProbeCommand c = contact::probe_at(pressed_along_beam(rest, 6.0));
 
@@ -72,6 +73,44 @@ TEST(PhysicsRunner, LockStepMatchesSteppingByHand)
     EXPECT_DOUBLE_EQ(local.force, s.last.probe_force_N);
     EXPECT_DOUBLE_EQ(local.stiffness, expected.stiffness);
     EXPECT_EQ(local.face, c.position);
+}
+
+// PhysicsOptions::clear_stride: a probe lowered from 15 mm above the skin at 20 mm/s, pressed 6 mm
+// and held. While it is clear of the skin the lock-step physics covers four time steps a step; the
+// touch and the press are stepped at 1 kHz, so the force the press settles to is the one of a
+// run that never strides (the tissue at rest either way before the touch), and every step_to ends
+// where it was asked, on the time-step grid.
+TEST(PhysicsRunner, WhileTheProbeIsClearOfTheSkinAStepCoversSeveralTimeSteps)
+{
+    const tissue::TissueModel m = test::shipped_model(2);
+    const Pose rest = test::leg().probe_rest_pose(0.5f, 0.5f);
+    PhysicsOptions fine;
+    fine.clear_stride = 1;
+    PhysicsRunner strided(m, PhysicsOptions{}), stepped(m, fine);
+    ASSERT_EQ(strided.compiled()->options.clear_stride, 4);
+    const double h = fine.time_step;
+    std::int64_t strides_at_touch = -1;
+    for (int ms = 5; ms <= 1600; ms += 5) {  // commands every 5 ms, as a device's would come
+        const double press = std::min(6.0, -15.0 + 0.02 * ms);
+        for (PhysicsRunner* r : {&strided, &stepped}) {
+            r->command(contact::probe_at(pressed_along_beam(rest, press)));
+            r->step_to(ms * h);
+            ASSERT_NEAR(r->latest().time, ms * h, 1e-9);
+            ASSERT_EQ(r->latest().step, ms);
+        }
+        if (strides_at_touch < 0 && strided.latest().contacts > 0) {
+            strides_at_touch = strided.stats().strides;
+            // the first touch comes at a time step of its own, as the stepped run's does
+            EXPECT_NEAR(strided.latest().probe_force_N, stepped.latest().probe_force_N, 0.05);
+        }
+    }
+    // clear for the first 0.7 s or so (15 mm at 20 mm/s, less the clearance): some 170 strides
+    EXPECT_GT(strides_at_touch, 100);
+    EXPECT_EQ(strided.stats().strides, strides_at_touch) << "a stride while the probe touched the skin";
+    EXPECT_EQ(stepped.stats().strides, 0);
+    EXPECT_EQ(strided.stats().steps, 1600);
+    EXPECT_GT(stepped.latest().probe_force_N, 1.0);
+    EXPECT_NEAR(strided.latest().probe_force_N, stepped.latest().probe_force_N, 1e-3 * stepped.latest().probe_force_N);
 }
 
 // The force on a probe pressed `press_mm` into the skin at `rest` over 0.2 s and held to 0.6 s.
