@@ -82,7 +82,7 @@ int run_slice(const SliceArgs& args)
     TerminalProgress progress(std::string("echosim slice: ") + kCaseVolumeProgress);
     try {
         if (args.volume.empty())
-            volumes = case_volume(options.patient.which, progress);
+            volumes = case_volume(options.patient.which, progress, args.coarse);
         else
             volumes = user_volume(args.volume, args.labels);
     } catch (const std::exception& e) {

@@ -158,6 +158,7 @@ struct SliceArgs {
     std::string imaging = "interpolative";  // echo::Imaging's name
     std::filesystem::path model;  // tissue model JSON (`echosim fit` writes one); empty: the shipped thigh
     std::string case_name = "healthy";
+    bool coarse = false;  // the default volume at 0.6 mm (echo::coarse_case_volume_options)
     double width_mm = 40, depth_mm = 50, pixel_mm = 0.1;
     double gain_db = 0, dynamic_range_db = 55;
     double venous_mmhg = 10, heart_rate_bpm = 70, time_s = 0;

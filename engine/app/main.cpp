@@ -193,6 +193,7 @@ int main(int argc, char** argv)
                           "the pressed tissue rests; needs labels)")
         ->check(CLI::IsMember({"interpolative", "generative"}));
     slice_cmd->add_option("--case", slice.case_name, "healthy, dvt-acute or dvt-chronic (the vessels' behaviour, and the default volume)");
+    slice_cmd->add_flag("--coarse", slice.coarse, "the case's default volume at 0.6 mm, in seconds to make (a quick look, tests); with --volume: nothing");
     slice_cmd->add_option("--width-mm", slice.width_mm, "image width [mm]")->check(finite_range(1.0, 200.0));
     slice_cmd->add_option("--depth-mm", slice.depth_mm, "image depth [mm]")->check(finite_range(1.0, 300.0));
     slice_cmd->add_option("--pixel-mm", slice.pixel_mm, "pixel size [mm]")->check(finite_range(0.005, 5.0));

@@ -114,21 +114,25 @@ std::filesystem::path cache_folder()
     throw std::runtime_error("no cache folder: neither XDG_CACHE_HOME nor HOME is set");
 }
 
-std::filesystem::path case_volume_folder(echo::Case which)
+namespace {
+echo::CaseVolumeOptions case_volume_options(bool coarse) { return coarse ? echo::coarse_case_volume_options() : echo::CaseVolumeOptions{}; }
+}  // namespace
+
+std::filesystem::path case_volume_folder(echo::Case which, bool coarse)
 {
     char voxel[32];
-    std::snprintf(voxel, sizeof voxel, "-%gmm-", echo::CaseVolumeOptions{}.voxel_mm);
+    std::snprintf(voxel, sizeof voxel, "-%gmm-", case_volume_options(coarse).voxel_mm);
     return cache_folder() / "volumes" / (std::string(echo::case_name(which)) + voxel + kRecipe);
 }
 
-VolumePair case_volume(echo::Case which, const std::function<void(const std::string&, double)>& progress)
+VolumePair case_volume(echo::Case which, const std::function<void(const std::string&, double)>& progress, bool coarse)
 {
-    const std::string name = case_volume_folder(which).filename().string();
+    const std::string name = case_volume_folder(which, coarse).filename().string();
     const std::string what = "the " + std::string(echo::case_name(which)) + " case's volume";
     return cached_volume(name, what, [&] {
         const scene::LegModel leg;
         // imaged on the GPU when a device is at hand (the one ECHOSIM_GPU names, else the best)
-        echo::CaseVolumeOptions options;
+        echo::CaseVolumeOptions options = case_volume_options(coarse);
         options.imager = bmode_imager_factory(gpu::ContextOptions::from_environment(), "echosim");
         return echo::make_case_volume(leg, which, options, progress);
     }, progress);

@@ -30,13 +30,15 @@ struct VolumePair {
 // when neither variable is set.
 std::filesystem::path cache_folder();
 
-// The folder in the cache that holds a case's default volume and labels (volume.nrrd, labels.nrrd).
-std::filesystem::path case_volume_folder(echo::Case which);
+// The folder in the cache that holds a case's default volume and labels (volume.nrrd, labels.nrrd),
+// or its coarse one (echo::coarse_case_volume_options): named by the case, the voxel and the recipe.
+std::filesystem::path case_volume_folder(echo::Case which, bool coarse = false);
 
 // The default volume of a case, from the cache or made now (telling `progress` what it does and
 // how far it is, 0..1) and cached. Throws std::runtime_error naming the folder when the cache
 // cannot be written, io::NrrdError naming the file when a cached one cannot be read.
-VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress);
+VolumePair case_volume(echo::Case which, const std::function<void(const std::string& stage, double done)>& progress,
+                       bool coarse = false);
 
 // The pair cached under `name` (a folder in the cache's volumes/: cache_entry_name gives one that
 // carries the recipe's version), or made by `make` now and cached, whole or not at all. `what`
