@@ -105,6 +105,9 @@ io::Volume to_codes(const io::Volume& v, const std::filesystem::path& path)
     return codes;
 }
 
+// the default volume's recipe, or its coarse one (`--coarse`)
+echo::CaseVolumeOptions case_volume_options(bool coarse) { return coarse ? echo::coarse_case_volume_options() : echo::CaseVolumeOptions{}; }
+
 }  // namespace
 
 std::filesystem::path cache_folder()
@@ -113,10 +116,6 @@ std::filesystem::path cache_folder()
     if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "echosim";
     throw std::runtime_error("no cache folder: neither XDG_CACHE_HOME nor HOME is set");
 }
-
-namespace {
-echo::CaseVolumeOptions case_volume_options(bool coarse) { return coarse ? echo::coarse_case_volume_options() : echo::CaseVolumeOptions{}; }
-}  // namespace
 
 std::filesystem::path case_volume_folder(echo::Case which, bool coarse)
 {

@@ -80,7 +80,7 @@ void PhysicsRunner::step_once(int stride)
     out_.publish();
     contact_out_.write_slot() = local_contact_model(*model_, state_);
     contact_out_.publish();
-    steps_.fetch_add(stride, std::memory_order_relaxed);  // (a publish of steps_per_publish counts one, as ever)
+    steps_.fetch_add(stride, std::memory_order_relaxed);
     if (stride > 1) strides_.fetch_add(1, std::memory_order_relaxed);
     if (after_step_) after_step_(state_.steps);
 }

@@ -50,7 +50,7 @@ struct SurfaceSnapshot {
 };
 
 struct RunnerStats {
-    std::int64_t steps = 0;     // time steps stepped (a stride, below, counts as the time steps it covers)
+    std::int64_t steps = 0;     // steps, a stride (below) counted as the time steps it covers (a publish of steps_per_publish counts one)
     std::int64_t overruns = 0;  // steps that started later than one period after they were due
     std::int64_t asleep = 0;    // steps the tissue slept through (PhysicsOptions::sleep_speed)
     std::int64_t refused_commands = 0;  // probe commands with a NaN, infinity or bad rotation
