@@ -92,6 +92,7 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
     const Eigen::Matrix3d to_world = probe.orientation.toRotationMatrix();
     const Eigen::Matrix3d to_local = to_world.transpose();
     set.axis = to_world.col(1);
+    set.across = to_world.col(2);
     const double hw = g.face_width / 2, ht = g.face_thickness / 2;
 
     // broad phase: the cells whose boxes meet the probe box's world-space bounds
@@ -135,6 +136,7 @@ int collide(const ProbeGeometry& g, const PenaltyLaw& law, const ProbeState& pro
                 double closing = set.axis.dot(probe.velocity);  // the probe's speed into the skin, along the axis
                 for (int k = 0; k < 3; ++k) closing -= ct.weights[k] * set.axis.dot(v.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])));
                 ct.force = std::max(0.0, law.pressure(ct.penetration) * area * facing * fade + law.damping_time * ct.stiffness * closing);
+                if (fade < 1.0) ct.across_stiffness = law.pressure(ct.penetration) * area * facing / g.edge_radius;
                 for (int k = 0; k < 3; ++k) force.segment<3>(3 * Eigen::Index(tri[std::size_t(k)])) += (ct.weights[k] * ct.force) * set.axis;
                 set.total_force += ct.force;
                 set.contacts.push_back(ct);
@@ -152,6 +154,12 @@ void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd&
         for (int k = 0; k < 3; ++k) along += c.weights[k] * set.axis.dot(p.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])));
         const double s = c.stiffness * along;
         for (int k = 0; k < 3; ++k) out.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])) += (s * c.weights[k]) * set.axis;
+        if (c.across_stiffness == 0) continue;
+        for (int k = 0; k < 3; ++k) {  // each node's own block (header)
+            auto node_out = out.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)]));
+            const double across = set.across.dot(p.segment<3>(3 * Eigen::Index(c.nodes[std::size_t(k)])));
+            node_out += (c.across_stiffness * c.weights[k] * c.weights[k] * across) * set.across;
+        }
     }
 }
 

@@ -98,6 +98,10 @@ struct Contact {
     double penetration = 0;  // below the probe's surface [mm]
     double force = 0;        // magnitude along the axis, on the tissue [N]
     double stiffness = 0;    // d force / d (the sample's displacement against the axis) [N/mm]
+    // how fast the force changes as the sample moves across the face's long sides (probe z),
+    // outward [N/mm]: the fade's slope times the pressure, non-zero in the fade alone
+    // (add_contact_stiffness_product)
+    double across_stiffness = 0;
 };
 
 // Where a point given in the probe's frame lies against the probe's profile in the plane of the
@@ -112,6 +116,7 @@ ProbeDepth probe_depth(const ProbeGeometry& geometry, const Eigen::Vector3d& loc
 
 struct ContactSet {
     Eigen::Vector3d axis = Eigen::Vector3d::UnitY();  // probe +y in world: into the tissue
+    Eigen::Vector3d across = Eigen::Vector3d::UnitZ();  // probe +z in world: across the long sides
     std::vector<Contact> contacts;
     double total_force = 0;  // sum of contact forces [N]: what pushes back on the probe
     GridBvh bvh{2, 2};
@@ -133,6 +138,18 @@ int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeSta
 // facing itself falls, k = area fade (slope f^2 - pressure (1 - f^2) turn), kept >= 0 so the
 // solver's matrix stays positive definite. The force's change as the skin moves across the axis
 // (over an end or a long edge's fade) is left to the next step; the matrix stays symmetric.
+// Across the long sides, where that change is steepest (the fade: the whole pressure per
+// edge_radius), each node of the sample also gets k_a w^2 c c^T, c the across direction and k_a
+// the sample's across_stiffness: a stiffness with no force of its own, which holds the skin in the
+// fade from moving across it faster than the step can follow. Without it, skin wrapped up the
+// long sides under a deep press chattered in and out of the fade, the force on the probe moving 2
+// to 3 N from one 1 ms step to the next (a large patient's 30 mm press; bench/RESULTS.md, "The
+// contact's long sides"): the fade pushes along the axis by where the skin lies across it, a
+// force that is not a potential's, and explicit over one step it fed the motion. A still probe's
+// force settles to what it did (the term is zero at rest), but the skin in the fade moves across
+// it only as fast as the step can follow: under a deep still press the tissue comes to rest in
+// 0.5 to 0.7 s (was 0.2), and exams run some 15 % slower. The solver's matrix carries the same
+// diagonal blocks (physics/grid_system).
 void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out);
 
 }  // namespace echosim::contact

@@ -156,8 +156,11 @@ void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem
         }
     });
 
-    // contacts: (h^2 + h tau) k (w a)(w a)^T
+    // contacts: (h^2 + h tau) k (w a)(w a)^T, and across the long sides h^2 k_a w^2 c c^T (a
+    // stiffness with no force and no damping of its own: contact::add_contact_stiffness_product)
     const double scale = h2 + h * model.penalty.damping_time;
+    const Eigen::Vector3d& ac = s.contacts.across;
+    const double across[6] = {ac.x() * ac.x(), ac.y() * ac.y(), ac.z() * ac.z(), ac.x() * ac.y(), ac.x() * ac.z(), ac.y() * ac.z()};
     g.contacts.clear();
     for (std::uint32_t node : g.contact_nodes) g.contact_place[node] = GridSystem::kNoPlace;
     g.contact_nodes.clear();
@@ -175,6 +178,14 @@ void prepare_system(const CompiledModel& model, const TissueState& s, GridSystem
             term.nodes[k] = g.contact_place[node];
         }
         g.contacts.push_back(term);
+        // across the long sides: each node's own block (contact::add_contact_stiffness_product)
+        if (c.across_stiffness == 0) continue;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t node = c.nodes[k];
+            if (model.fixed(node)) continue;  // a fixed node's row is the identity
+            const double w = h2 * c.across_stiffness * c.weights[int(k)] * c.weights[int(k)];
+            for (std::size_t e = 0; e < 6; ++e) g.diagonal[e * n + node] += float(w * across[e]);
+        }
     }
     for (int c = 0; c < 3; ++c) g.axis[std::size_t(c)] = float(s.contacts.axis[c]);
 

@@ -157,6 +157,60 @@ TEST(ProbeContact, TiltedProbePushesAlongItsOwnAxis)
     EXPECT_NEAR(total.z(), 0.0, 1e-9);
 }
 
+// A strip of skin standing in the plane z = 5 - s, s inside the face's long side (z = 5), 10 to
+// 12 mm behind the face: skin wrapped up the side of a deeply pressed probe, in the fade.
+struct SideStrip {
+    double force = 0, across_stiffness = 0;
+    Eigen::Vector3d across = Eigen::Vector3d::Zero();
+    Eigen::VectorXd stiffness_times_unit_across;  // add_contact_stiffness_product on every node moved 1 mm across
+};
+SideStrip side_strip(double s)
+{
+    Eigen::VectorXd x(12);
+    const double z = 5.0 - s;
+    x << -5, -12, z, -5, -10, z, 5, -12, z, 5, -10, z;
+    const PatchSurface surface = make_patch_surface(2, 2, x, 0.05);
+    ContactSet set = make_contact_set(surface);
+    ProbeState probe;
+    probe.active = true;  // face at y = 0 looking along +y, its long sides at z = +-5
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(12);
+    EXPECT_GT(collide(ProbeGeometry{}, PenaltyLaw{}, probe, surface, x, Eigen::VectorXd::Zero(12), set, force), 0);
+    SideStrip strip;
+    strip.force = set.total_force;
+    strip.across = set.across;
+    for (const Contact& c : set.contacts) strip.across_stiffness += c.across_stiffness;
+    Eigen::VectorXd unit(12);
+    for (int k = 0; k < 4; ++k) unit.segment<3>(3 * k) = Eigen::Vector3d::UnitZ();
+    strip.stiffness_times_unit_across = Eigen::VectorXd::Zero(12);
+    add_contact_stiffness_product(set, unit, strip.stiffness_times_unit_across);
+    return strip;
+}
+
+// The fade pushes skin along the axis by where it lies across the long side: the implicit step is
+// told how steeply (Contact::across_stiffness), the force's own derivative, measured here by moving
+// the strip across; under the face's full width it is told nothing. The skin on a large patient's
+// deeply pressed probe chattered without it (bench/RESULTS.md, "The contact's long sides").
+TEST(ProbeContact, TheStepIsToldHowTheFadeChangesAcrossTheLongSides)
+{
+    const double s = 0.5, ds = 0.05;
+    const SideStrip at = side_strip(s);
+    const double slope = (side_strip(s + ds).force - side_strip(s - ds).force) / (2 * ds);  // linear in the fade: exact
+    ASSERT_GT(slope, 0.0);
+    EXPECT_NEAR(at.across_stiffness, slope, 1e-6 * slope);
+    EXPECT_NEAR(at.across.z(), 1.0, 1e-12);
+    // in the product, each node's own share along the across direction: the samples' w^2 sum to
+    // less than the strip's whole k (sum over nodes of w^2 < 1), and none of it along the axis
+    double along_across = 0;
+    for (int k = 0; k < 4; ++k) {
+        along_across += at.stiffness_times_unit_across[3 * k + 2];
+        EXPECT_EQ(at.stiffness_times_unit_across[3 * k], 0.0);
+    }
+    EXPECT_GT(along_across, 0.1 * at.across_stiffness);
+    EXPECT_LT(along_across, at.across_stiffness);
+    // past the fade, under the face's full width: nothing changes across, nothing is told
+    EXPECT_EQ(side_strip(1.5).across_stiffness, 0.0);
+}
+
 TEST(GridBvh, FindsExactlyTheCellsUnderABox)
 {
     // a 5 x 5-node flat grid, 10 mm cells; a box over the cells (1..2, 1..2)

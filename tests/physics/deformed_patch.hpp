@@ -110,6 +110,11 @@ inline Eigen::MatrixXd assemble(const DeformedPatch& d, double sm, double sd, do
             for (int q = 0; q < 3; ++q)
                 add(c.nodes[std::size_t(p)], c.nodes[std::size_t(q)],
                     (sk + sd * d.compiled.penalty.damping_time) * c.stiffness * c.weights[p] * c.weights[q] * axis * axis.transpose());
+    // across the long sides, each node's own block (contact::add_contact_stiffness_product)
+    const Eigen::Vector3d across = s.contacts.across;
+    for (const contact::Contact& c : s.contacts.contacts)
+        for (int p = 0; p < 3; ++p)
+            add(c.nodes[std::size_t(p)], c.nodes[std::size_t(p)], sk * c.across_stiffness * c.weights[p] * c.weights[p] * across * across.transpose());
     return a;
 }
 

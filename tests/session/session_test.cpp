@@ -169,7 +169,9 @@ TEST(Session, ADeepPressHoldsASteadyForce)
         ASSERT_TRUE(r.settled) << not_settled_message(press, r);
         EXPECT_GT(r.force_N, 5.0) << press << " mm";
         EXPECT_LT(r.ripple_N, 0.002 * r.force_N) << press << " mm: " << r.force_N << " N";
-        s.advance(0.2);
+        // (the skin in the long sides' fade moves across them only as fast as the step can follow,
+        // contact::add_contact_stiffness_product: at rest after 0.5 and 0.7 s here, was 0.2 s)
+        s.advance(1.0);
         EXPECT_GT(s.physics_stats().asleep, 0) << press << " mm: the tissue should come to rest under a still probe";
     }
 }
