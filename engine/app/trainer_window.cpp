@@ -66,7 +66,8 @@ std::string run_keys_help()
            "                  End finishes. Report: Enter a new lesson. Ctrl+Alt+Q quits (the only way in --kiosk)\n"
            "  the probe       right-drag or arrows slide it, W/S or Shift+wheel press it in and out, Q/E and A/D tilt it,\n"
            "                  R levels it, T turns it (transverse/longitudinal)\n"
-           "  the scanner     + and - gain, Page Up and Page Down focus, Space freezes the image\n"
+           "  the scanner     + and - gain, Page Up and Page Down focus, Space freezes the image; on the frozen image\n"
+           "                  two clicks measure the distance between them (the caliper)\n"
            "  the view        left-drag orbits, the wheel zooms, V (or Home) resets it; G shows the vessels and the image plane\n"
            "                  in the leg (practice guides); F11 (or F) fullscreen; Esc quits\n";
 }
@@ -237,7 +238,7 @@ void TrainerWindow::filter(runner::Runner&, RunInput& in)
         in.toggle_fullscreen = false;
         in.quit = false;
     }
-    if (ui && ui->wants_mouse()) {
+    if ((ui && ui->wants_mouse()) || driver_->caliper_hovered()) {  // a click on the frozen image is the caliper's
         in.orbit_yaw = in.orbit_pitch = 0;
         in.zoom = 1;
     }

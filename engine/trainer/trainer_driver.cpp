@@ -1,5 +1,8 @@
 #include "trainer/trainer_driver.hpp"
 
+#include <imgui.h>
+
+#include "runner/frame.hpp"
 #include "trainer/exam_files.hpp"
 
 namespace echosim::trainer {
@@ -30,10 +33,27 @@ runner::PassFactory TrainerDriver::pass()
                 auto p = std::make_unique<ui::UiPass>(setup, o);
                 p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
                     act(draw_trainer(*trainer_, view, extent, ui_->fonts(), ui_->scale(), screens_));
+                    update_caliper(extent);
                 });
                 ui_ = p.get();
                 return p;
             }};
+}
+
+void TrainerDriver::update_caliper(VkExtent2D extent)
+{
+    caliper_hovered_ = false;
+    runner::SimulatorFrame* frame = runner_ ? runner_->frame() : nullptr;
+    if (!frame || !frame->echo_pass().frozen() || trainer_->screen() != Screen::exam) {
+        caliper_.clear();
+        return;
+    }
+    const ImagePanel panel = image_panel(extent, frame->echo_image().plane());
+    const ImGuiIO& io = ImGui::GetIO();
+    const std::optional<glm::dvec2> under = image_point_at(panel, {io.MousePos.x, io.MousePos.y});
+    caliper_hovered_ = under.has_value() && !io.WantCaptureMouse;
+    if (caliper_hovered_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) caliper_.click(*under);
+    draw_caliper(caliper_, panel, ui_->fonts(), ui_->scale());
 }
 
 void TrainerDriver::feed(const ui::UiInput& input)

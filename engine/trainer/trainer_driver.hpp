@@ -57,6 +57,12 @@ public:
     void capture(std::function<void(const io::RgbaImage&)> sink) { capture_ = std::move(sink); }
     // Every case's lesson runs on the volumes held (a user's own volume): none asks for a runner anew.
     void accept_any_case() { any_case_ = true; }
+    // The caliper on the frozen image during a lesson (trainer/caliper.hpp): a left click on the
+    // image places its points (drawn by the UI pass); the image unfrozen, it is cleared.
+    const Caliper& caliper() const { return caliper_; }
+    // Whether the mouse was over the frozen image at the last frame: its left button is the
+    // caliper's then, not the view's orbit.
+    bool caliper_hovered() const { return caliper_hovered_; }
 
     void on_attach(runner::Runner& runner) override;
     bool should_stop() override { return quit_ || case_wanted_.has_value(); }
@@ -65,6 +71,8 @@ public:
 
 private:
     void act(Action a);
+    // The caliper's clicks and drawing, in the UI pass's draw callback.
+    void update_caliper(VkExtent2D extent);
 
     std::shared_ptr<Trainer> trainer_;
     DriverOptions options_;
@@ -78,6 +86,8 @@ private:
     std::optional<std::string> case_wanted_;
     std::function<void(const io::RgbaImage&)> capture_;
     bool any_case_ = false;
+    Caliper caliper_;
+    bool caliper_hovered_ = false;
     ScreenState screens_;
     int input_frames_ = 0;  // frames still wanted after an input (ImGui sees a release a frame later)
 };

@@ -475,4 +475,45 @@ Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent
     return a;
 }
 
+void draw_caliper(const Caliper& caliper, const ImagePanel& panel, const ui::UiFonts& fonts, float scale)
+{
+    ImDrawList* dl = ImGui::GetForegroundDrawList();
+    const ImVec4 mark(0.55f, 1.0f, 0.35f, 1.0f), shade(0.0f, 0.0f, 0.0f, 0.75f);
+    const auto at = [&](const glm::dvec2& mm) {
+        const glm::vec2 p = pixel_of(panel, mm);
+        return ImVec2(p.x, p.y);
+    };
+    // a cross, dark under bright so it reads on white speckle and black lumen alike
+    const auto cross = [&](const ImVec2& c) {
+        const float arm = 7 * scale;
+        for (const auto& [colour, width] : {std::pair{shade, 4 * scale}, std::pair{mark, 2 * scale}}) {
+            dl->AddLine(ImVec2(c.x - arm, c.y), ImVec2(c.x + arm, c.y), u32(colour), width);
+            dl->AddLine(ImVec2(c.x, c.y - arm), ImVec2(c.x, c.y + arm), u32(colour), width);
+        }
+    };
+    if (caliper.first()) cross(at(*caliper.first()));
+    if (caliper.second()) {
+        const ImVec2 a = at(*caliper.first()), b = at(*caliper.second());
+        // dotted between the crosses, as a scanner draws it
+        const float dx = b.x - a.x, dy = b.y - a.y, length = std::hypot(dx, dy), dash = 4 * scale;
+        for (float d = 0; d + dash <= length; d += 2 * dash) {
+            const ImVec2 p(a.x + dx * d / length, a.y + dy * d / length), q(a.x + dx * (d + dash) / length, a.y + dy * (d + dash) / length);
+            dl->AddLine(p, q, u32(mark), 1.5f * scale);
+        }
+        cross(b);
+    }
+    // the line at the image's top: frozen, and what the caliper reads or how to use it
+    char text[96];
+    if (const std::optional<double> d = caliper.distance_mm())
+        std::snprintf(text, sizeof text, "FROZEN   caliper %.1f mm (click to measure anew)", *d);
+    else
+        std::snprintf(text, sizeof text, "FROZEN   caliper: click %s point on the image", caliper.first() ? "the second" : "a first");
+    ImGui::PushFont(fonts.bold);
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    const ImVec2 o(panel.x + 0.5f * (panel.width - size.x), panel.y + 6 * scale);
+    dl->AddRectFilled(ImVec2(o.x - 6 * scale, o.y - 3 * scale), ImVec2(o.x + size.x + 6 * scale, o.y + size.y + 3 * scale), u32(shade), 4 * scale);
+    dl->AddText(o, u32(mark), text);
+    ImGui::PopFont();
+}
+
 }  // namespace echosim::trainer

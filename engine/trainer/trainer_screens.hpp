@@ -17,6 +17,7 @@
 #include <vulkan/vulkan.h>
 
 #include "session/session.hpp"
+#include "trainer/caliper.hpp"
 #include "trainer/trainer.hpp"
 #include "ui/ui_pass.hpp"
 
@@ -40,5 +41,10 @@ struct ScreenState {
 // what a clicked button asks of the driver.
 Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale,
                     ScreenState& state);
+
+// Draws the caliper over the frozen image (ImGui's context current, inside the draw callback):
+// its points as crosses, the line between them, the distance by the second, and a line at the
+// image's top saying the image is frozen and how to measure.
+void draw_caliper(const Caliper& caliper, const ImagePanel& panel, const ui::UiFonts& fonts, float scale);
 
 }  // namespace echosim::trainer

@@ -31,6 +31,7 @@
 #include "io/png.hpp"
 #include "render/image_compare.hpp"
 #include "runner/exam_config.hpp"
+#include "runner/scanner_controls.hpp"
 #include "test_gpu.hpp"
 #include "trainer/trainer_driver.hpp"
 
@@ -319,6 +320,18 @@ runner::RunnerConfig small_trainer_config(const SmallVolume& v, std::shared_ptr<
     return config;
 }
 
+// Runs `config` (the trainer over the small volume) to its end, the frame at step `shot_step` read
+// back into `shot`; returns the validation messages.
+std::uint32_t run_with_shot(runner::RunnerConfig config, trainer::TrainerDriver& driver, std::int64_t shot_step, io::RgbaImage& shot)
+{
+    runner::Runner r(std::move(config));
+    const auto counter = r.validation_counter();
+    while (r.step())
+        if (r.steps() == shot_step) driver.capture([&](const io::RgbaImage& im) { shot = im; });
+    r.finish();
+    return counter->load();
+}
+
 struct KioskRun {
     std::int64_t steps = 0;
     std::uint32_t messages = 0;
@@ -437,17 +450,7 @@ io::RgbaImage away_from_station(trainer::Difficulty difficulty, std::string* gui
     auto hand = std::make_shared<Hand>();
     hand->driver = driver;
     io::RgbaImage shot;
-    runner::RunnerConfig config = small_trainer_config(v, driver, hand, 10 / 60.0, kExtent);
-    std::uint32_t messages = 0;
-    {
-        runner::Runner r(std::move(config));
-        const auto counter = r.validation_counter();
-        while (r.step())
-            if (r.steps() == 8) driver->capture([&](const io::RgbaImage& im) { shot = im; });
-        r.finish();
-        messages = counter->load();
-    }
-    EXPECT_EQ(messages, 0u);
+    EXPECT_EQ(run_with_shot(small_trainer_config(v, driver, hand, 10 / 60.0, kExtent), *driver, 8, shot), 0u);
     const trainer::Guidance g = trainer::guide(t->last_sample().face, t->scorer().truth()[0], t->lesson().bands);
     *guidance = trainer::guidance_text(g, trainer::guidance_level(difficulty));
     io::write_png(std::filesystem::path(testing::TempDir()) / (std::string("trainer_guidance_") + trainer::difficulty_name(difficulty) + ".png"), shot);
@@ -549,6 +552,73 @@ TEST(TrainerReportScreen, ALessonLeftAtOnceFlagsEveryStationAndTheReportStillOff
     EXPECT_GT(again.y0, 0.0f);
     EXPECT_LT(again.y1, float(kExtent.height));
     io::write_png(std::filesystem::path(testing::TempDir()) / "trainer_report_errors.png", shot);
+}
+
+}  // namespace
+}  // namespace echosim
+
+namespace echosim {
+namespace {
+
+// The caliper through the runner, as a trainee uses it: the lesson started, the image frozen (the
+// Space key's toggle), the mouse moved onto the image and clicked at two points 10 mm apart across
+// at 20 mm deep (by the panel's own pixels: 14.4 px/mm in a 1280 x 720 frame, worked by hand in
+// TrainerCaliper.TheImagePanelsPixelsAreTheImagesMillimetres), each click a press and a release:
+// the caliper reads 10 mm within a pixel, and its crosses are drawn there; unfrozen, it is gone.
+TEST(TrainerCaliperRun, TwoClicksOnTheFrozenImageMeasureTheirDistance)
+{
+    const std::filesystem::path dir = temp("trainer_caliper");
+    auto t = std::make_shared<trainer::Trainer>(kiosk_options(dir));
+    const SmallVolume v = small_volume();
+    auto driver = std::make_shared<trainer::TrainerDriver>(
+        t, trainer::DriverOptions{.frame_every_steps = 1, .loaded_case = "healthy", .volume = v.grey, .labels = v.labels});
+    const float px_per_mm = 14.4f, left = 704.0f + 288.0f - 5.0f * px_per_mm, right = left + 10.0f * px_per_mm, y = 20.0f * px_per_mm;
+    struct Hand final : runner::Input {
+        std::shared_ptr<trainer::TrainerDriver> driver;
+        float left = 0, right = 0, y = 0;
+        std::optional<double> measured;
+        bool poll(runner::Runner& r, double) override
+        {
+            const std::int64_t k = r.steps();
+            ui::UiInput in;
+            in.mouse_x = k < 9 ? left : right;
+            in.mouse_y = y;
+            if (k == 2) in.pressed = {ui::Key::enter};
+            if (k == 4) runner::apply(*r.frame(), runner::ScannerInput{.toggle_freeze = true});
+            in.mouse_down[0] = k == 7 || k == 11;  // pressed there, released the step after
+            if (k == 14) {
+                measured = driver->caliper().distance_mm();
+                runner::apply(*r.frame(), runner::ScannerInput{.toggle_freeze = true});
+            }
+            driver->feed(in);
+            return true;
+        }
+    };
+    auto hand = std::make_shared<Hand>();
+    hand->driver = driver;
+    hand->left = left;
+    hand->right = right;
+    hand->y = y;
+    io::RgbaImage shot;
+    EXPECT_EQ(run_with_shot(small_trainer_config(v, driver, hand, 17 / 60.0, kExtent), *driver, 13, shot), 0u);
+    ASSERT_TRUE(hand->measured) << "no measurement after two clicks on the frozen image";
+    EXPECT_NEAR(*hand->measured, 10.0, 1.0 / px_per_mm);
+    EXPECT_FALSE(driver->caliper().first()) << "unfrozen, the caliper is cleared";
+    io::write_png(std::filesystem::path(testing::TempDir()) / "trainer_caliper.png", shot);
+    // the crosses' green at both points (a cross's arm is 7 px), none of it far from them
+    ASSERT_EQ(shot.width, kExtent.width);
+    const auto green_near = [&](float cx, float cy) {
+        int n = 0;
+        for (int dy = -8; dy <= 8; ++dy)
+            for (int dx = -8; dx <= 8; ++dx) {
+                const std::uint8_t* p = &shot.pixels[(std::size_t(cy + dy) * shot.width + std::size_t(cx + dx)) * 4];
+                n += p[1] > 200 && p[0] < 190 && p[2] < 140;
+            }
+        return n;
+    };
+    EXPECT_GT(green_near(left, y), 10);
+    EXPECT_GT(green_near(right, y), 10);
+    EXPECT_EQ(green_near(left, y + 60), 0);
 }
 
 }  // namespace

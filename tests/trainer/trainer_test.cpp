@@ -1,6 +1,7 @@
 // The trainer's state without a GPU (trainer/trainer.hpp, lesson.hpp, guidance.hpp): the lessons'
 // stations, the guidance's directions from the truth, the screens' keys (the kiosk's Esc), calls
 // landing on the station examined, the idle timeout scoring and storing the session.
+#include <cmath>
 #include <filesystem>
 
 #include <unistd.h>
@@ -9,6 +10,7 @@
 
 #include "exam/records.hpp"
 #include "exam/scenario.hpp"
+#include "trainer/caliper.hpp"
 #include "trainer/guidance.hpp"
 #include "trainer/lesson.hpp"
 #include "trainer/trainer.hpp"
@@ -193,6 +195,51 @@ TEST(TrainerIdle, TheIdleTimeoutStoresTheSessionAndReturnsToTheStartScreen)
     const std::vector<exam::SessionRecord> stored = records.sessions("Idle Ida");
     ASSERT_EQ(stored.size(), 1u);
     EXPECT_EQ(stored[0].case_id, t.lesson().id);
+}
+
+// The image panel of a 1280 x 720 frame and the default plane (40 mm wide, 50 deep), worked by
+// hand: the panel keeps the plane's aspect at the frame's full height, 720 px for 50 mm, so
+// 14.4 px/mm both ways and 576 px wide, against the frame's right edge (x from 704).
+TEST(TrainerCaliper, TheImagePanelsPixelsAreTheImagesMillimetres)
+{
+    const trainer::ImagePanel panel = trainer::image_panel({1280, 720}, echo::ImagePlane{});
+    EXPECT_FLOAT_EQ(panel.x, 704.0f);
+    EXPECT_FLOAT_EQ(panel.y, 0.0f);
+    EXPECT_FLOAT_EQ(panel.width, 576.0f);
+    EXPECT_FLOAT_EQ(panel.height, 720.0f);
+    const std::optional<glm::dvec2> centre = trainer::image_point_at(panel, {704.0f + 288.0f, 360.0f});
+    ASSERT_TRUE(centre);
+    EXPECT_NEAR(centre->x, 0.0, 1e-9);
+    EXPECT_NEAR(centre->y, 25.0, 1e-9);
+    const std::optional<glm::dvec2> corner = trainer::image_point_at(panel, {704.0f, 720.0f});
+    ASSERT_TRUE(corner);
+    EXPECT_NEAR(corner->x, -20.0, 1e-9);
+    EXPECT_NEAR(corner->y, 50.0, 1e-9);
+    // off the image: the leg's view, above or below it, a NaN cursor
+    EXPECT_FALSE(trainer::image_point_at(panel, {703.0f, 360.0f}));
+    EXPECT_FALSE(trainer::image_point_at(panel, {900.0f, 721.0f}));
+    EXPECT_FALSE(trainer::image_point_at(panel, {std::nanf(""), 360.0f}));
+    // drawn where it was clicked
+    const glm::vec2 back = trainer::pixel_of(panel, {3.5, 12.25});
+    EXPECT_NEAR(back.x, 704.0f + 14.4f * (20.0f + 3.5f), 1e-3f);
+    EXPECT_NEAR(back.y, 14.4f * 12.25f, 1e-3f);
+}
+
+TEST(TrainerCaliper, TwoClicksMeasureAndAThirdStartsAnew)
+{
+    trainer::Caliper c;
+    EXPECT_FALSE(c.distance_mm());
+    c.click({-3.0, 10.0});
+    EXPECT_FALSE(c.distance_mm());
+    c.click({1.0, 13.0});
+    ASSERT_TRUE(c.distance_mm());
+    EXPECT_NEAR(*c.distance_mm(), 5.0, 1e-12);  // a 3-4-5 triangle
+    c.click({0.0, 0.0});
+    EXPECT_FALSE(c.distance_mm());
+    ASSERT_TRUE(c.first());
+    EXPECT_EQ(*c.first(), glm::dvec2(0.0, 0.0));
+    c.clear();
+    EXPECT_FALSE(c.first());
 }
 
 }  // namespace
