@@ -20,10 +20,10 @@ constexpr double kVisitMaxAngleDeg = 45.0;
 
 glm::dvec3 to_d(const glm::vec3& v) { return glm::dvec3(v); }
 
-std::string format(const char* fmt, double a, double b = 0)
+std::string format(const char* fmt, double a, double b = 0, double c = 0)
 {
     char text[160];
-    std::snprintf(text, sizeof text, fmt, a, b);
+    std::snprintf(text, sizeof text, fmt, a, b, c);
     return text;
 }
 
@@ -229,8 +229,10 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
         if (i < images.size()) s.image_png = images[i];
 
         const bool visited = st.peak_at_s >= 0;
-        const bool adequate = visited && st.peak_force_N >= bands.adequate_force_N && st.peak_force_N <= bands.excessive_force_N &&
-                              st.at_peak.angle_deg <= bands.transverse_deg;
+        const bool measured = i < compression.size() && compression[i] && compression[i]->vein_rest_mm2 > 0;
+        const bool walls_met = measured && s.collapse_ratio <= kWallsMetRatio;
+        const bool enough = st.peak_force_N >= bands.adequate_force_N || walls_met;
+        const bool adequate = visited && enough && st.peak_force_N <= bands.excessive_force_N && st.at_peak.angle_deg <= bands.transverse_deg;
         points += int(st.reached) + int(adequate) + int(s.call_correct);
         if (visited || st.wrong_vessel) ++examined;
         if (s.call_correct) ++calls_right;
@@ -244,9 +246,11 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
         if (visited && st.oblique)
             flag(ErrorKind::oblique_plane, st.oblique_at_s,
                  format("plane %.0f deg from transverse (within %.0f expected)", st.oblique_angle_deg, bands.transverse_deg));
-        if (visited && st.peak_force_N < bands.adequate_force_N)
+        if (visited && !enough)
             flag(ErrorKind::too_little_pressure, st.peak_at_s,
-                 format("peak %.1f N, adequate from %.1f N", st.peak_force_N, bands.adequate_force_N));
+                 measured ? format("peak %.1f N, adequate from %.1f N; the walls did not meet (lumen %.0f %% of rest)", st.peak_force_N,
+                                   bands.adequate_force_N, 100 * s.collapse_ratio)
+                          : format("peak %.1f N, adequate from %.1f N", st.peak_force_N, bands.adequate_force_N));
         if (visited && st.peak_force_N > bands.excessive_force_N)
             flag(ErrorKind::excessive_force, st.peak_at_s,
                  format("peak %.1f N, excessive above %.1f N", st.peak_force_N, bands.excessive_force_N));

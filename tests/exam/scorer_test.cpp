@@ -103,6 +103,32 @@ TEST(Scorer, TooLittlePressureOnly)
     EXPECT_NEAR(r.score, 2.0 / 3.0, 1e-12);  // reached and called right, not adequately pressed
 }
 
+// Adequate pressure is the walls meeting (kWallsMetRatio), whatever the force took: 3 N (under the
+// band's 5) that closed the vein to 4 % of its lumen is pressed enough; the same 3 N leaving half
+// of it open, or a thrombosed vein's 12 %, is too little, and the message says the walls did not meet.
+TEST(Scorer, AVeinWhoseWallsMetUnderTheBandWasPressedEnough)
+{
+    const auto scored = [](double pressed_mm2, bool thrombosed) {
+        Scorer s(scenario(), {station("FV 10", -100, thrombosed)});
+        s.call(press(s, at(0, -100), 3, 0), thrombosed ? Call::not_compressible : Call::compressible);
+        Compression c;
+        c.vein_rest_mm2 = 50;
+        c.vein_pressed_mm2 = pressed_mm2;
+        return s.finish({c}, {""});
+    };
+    const ExamReport closed = scored(2, false);
+    EXPECT_TRUE(closed.errors.empty()) << closed.errors.front().detail;
+    EXPECT_DOUBLE_EQ(closed.score, 1.0);
+    EXPECT_NEAR(closed.stations[0].collapse_ratio, 0.04, 1e-12);
+    const ExamReport open = scored(25, false);
+    ASSERT_EQ(kinds(open), std::vector<ErrorKind>{ErrorKind::too_little_pressure});
+    EXPECT_NE(open.errors[0].detail.find("walls did not meet (lumen 50 % of rest)"), std::string::npos) << open.errors[0].detail;
+    EXPECT_NEAR(open.score, 2.0 / 3.0, 1e-12);
+    // just over the line: 10 % is met, 12 % is not
+    EXPECT_TRUE(scored(5, false).errors.empty());
+    EXPECT_EQ(kinds(scored(6, true)), std::vector<ErrorKind>{ErrorKind::too_little_pressure});
+}
+
 TEST(Scorer, ExcessiveForceOnly)
 {
     Scorer s(scenario(), {station("FV 10", -100)});
