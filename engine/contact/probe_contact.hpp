@@ -148,8 +148,8 @@ int collide(const ProbeGeometry& geometry, const PenaltyLaw& law, const ProbeSta
 // force that is not a potential's, and explicit over one step it fed the motion. A still probe's
 // force settles to what it did (the term is zero at rest), but the skin in the fade moves across
 // it only as fast as the step can follow: under a deep still press the tissue comes to rest in
-// 0.5 to 0.7 s (was 0.2), and the headless exam runs some 7 % slower. The solver's matrix carries the same
-// diagonal blocks (physics/grid_system).
+// 0.5 to 0.7 s (was 0.2), and the headless exam runs some 7 % slower. The solver's matrix
+// carries the same diagonal blocks (physics/grid_system).
 void add_contact_stiffness_product(const ContactSet& set, const Eigen::VectorXd& p, Eigen::VectorXd& out);
 
 }  // namespace echosim::contact
