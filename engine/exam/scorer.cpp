@@ -139,6 +139,18 @@ void Scorer::observe(const ExamSample& s)
             (!at || std::abs(g.along_mm) < std::abs(geometries[*at].along_mm)))
             at = i;
     }
+    // the force held above the excessive limit at the station the probe is at (kExcessiveHoldS)
+    for (std::size_t i = 0; i < stations_.size(); ++i) {
+        Tracked& st = stations_[i];
+        if (at != i || !(s.force_N > bands.excessive_force_N)) {
+            st.above_since_s = -1;
+            continue;
+        }
+        if (st.above_since_s < 0) st.above_since_s = s.time_s;
+        const double held = s.time_s - st.above_since_s;
+        if (!st.excessive && held >= kExcessiveHoldS - 1e-9) st.excessive = true, st.excessive_at_s = st.above_since_s;
+        if (st.excessive) st.excessive_held_s = std::max(st.excessive_held_s, held);
+    }
     for (std::size_t i = 0; i < truth_.size(); ++i) {
         const StationTruth& t = truth_[i];
         Tracked& st = stations_[i];
@@ -232,7 +244,7 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
         const bool measured = i < compression.size() && compression[i] && compression[i]->vein_rest_mm2 > 0;
         const bool walls_met = measured && s.collapse_ratio <= kWallsMetRatio;
         const bool enough = st.peak_force_N >= bands.adequate_force_N || walls_met;
-        const bool adequate = visited && enough && st.peak_force_N <= bands.excessive_force_N && st.at_peak.angle_deg <= bands.transverse_deg;
+        const bool adequate = visited && enough && !st.excessive && st.at_peak.angle_deg <= bands.transverse_deg;
         points += int(st.reached) + int(adequate) + int(s.call_correct);
         if (visited || st.wrong_vessel) ++examined;
         if (s.call_correct) ++calls_right;
@@ -251,9 +263,9 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
                  measured ? format("peak %.1f N, adequate from %.1f N; the walls did not meet (lumen %.0f %% of rest)", st.peak_force_N,
                                    bands.adequate_force_N, 100 * s.collapse_ratio)
                           : format("peak %.1f N, adequate from %.1f N", st.peak_force_N, bands.adequate_force_N));
-        if (visited && st.peak_force_N > bands.excessive_force_N)
-            flag(ErrorKind::excessive_force, st.peak_at_s,
-                 format("peak %.1f N, excessive above %.1f N", st.peak_force_N, bands.excessive_force_N));
+        if (visited && st.excessive)
+            flag(ErrorKind::excessive_force, st.excessive_at_s,
+                 format("peak %.1f N, excessive above %.1f N, held there %.2f s", st.peak_force_N, bands.excessive_force_N, st.excessive_held_s));
         if (st.call != Call::none && !s.call_correct) {
             if (st.call == Call::not_compressible && t.mimic_nearby && !t.thrombosed)
                 flag(ErrorKind::mimic_called_clot, st.call_at_s, "a lymph node beside the vein called a clot; the vein compresses");

@@ -44,6 +44,11 @@ inline constexpr double kPressingFraction = 0.5;
 // thrombus holds open) is judged by the force alone. A normal vein pressed adequately closes to
 // 0.03 or less in the shipped cases (bench/RESULTS.md), a light press leaves a quarter or more.
 inline constexpr double kWallsMetRatio = 0.1;
+// A press is flagged excessive once the force has stayed above the case's excessive limit this long
+// at the station [s]: a trainee pressing too hard holds it; one frame's spike (the contact's ripple
+// at the deepest presses, bench/RESULTS.md "The contact's long sides"; a jolt of the hand) is not
+// what the protocol warns of. Four samples at 60 frames a second.
+inline constexpr double kExcessiveHoldS = 0.05;
 
 // One step as the scorer sees it: the session's view, reduced to plain values.
 struct ExamSample {
@@ -91,11 +96,12 @@ public:
         double peak_force_N = 0;
         Call call = Call::none;
         bool oblique = false, wrong_vessel = false;
+        bool excessive = false;  // the force held past the excessive limit (kExcessiveHoldS)
     };
     StationProgress progress(std::size_t station) const
     {
         const Tracked& st = stations_[station];
-        return {st.reached, st.peak_force_N, st.call, st.oblique, st.wrong_vessel};
+        return {st.reached, st.peak_force_N, st.call, st.oblique, st.wrong_vessel, st.excessive};
     }
     // The station a call would answer now (the one examined last), if any.
     std::optional<std::size_t> last_examined() const { return last_examined_; }
@@ -128,6 +134,11 @@ private:
         double oblique_at_s = -1, oblique_angle_deg = 0;
         bool wrong_vessel = false;
         double wrong_vessel_at_s = -1;
+        // the force above the excessive limit: since when, without a break (-1: not now), and
+        // whether it stayed there kExcessiveHoldS, from when and for how long at most
+        double above_since_s = -1;
+        bool excessive = false;
+        double excessive_at_s = -1, excessive_held_s = 0;
         std::string wrong_vessel_which;
         Call call = Call::none;
         double call_at_s = -1;

@@ -124,7 +124,7 @@ bool Trainer::station_wrong(std::size_t i) const
     const exam::Scorer::StationProgress p = scorer_->progress(i);
     const exam::StationTruth& t = scorer_->truth()[i];
     const bool wrong_call = p.call != exam::Call::none && (p.call == exam::Call::not_compressible) != t.thrombosed;
-    return wrong_call || p.peak_force_N > lesson_.bands.excessive_force_N || p.oblique || p.wrong_vessel;
+    return wrong_call || p.excessive || p.oblique || p.wrong_vessel;
 }
 
 std::optional<std::size_t> Trainer::target() const

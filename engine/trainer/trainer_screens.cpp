@@ -407,7 +407,10 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
             ImGui::TableNextColumn();
             ImGui::TextColored(s.reached ? kGreen : kRed, "%s", s.reached ? "yes" : "no");
             ImGui::TableNextColumn();
-            const bool ok_force = s.peak_force_N >= r.adequate_force_N && s.peak_force_N <= r.excessive_force_N;
+            // as scored: pressed enough (the force, or the walls met) and not held past the limit
+            bool ok_force = s.reached;
+            for (const exam::FlaggedError& e : r.errors)
+                if (e.station == s.name && (e.kind == exam::ErrorKind::too_little_pressure || e.kind == exam::ErrorKind::excessive_force)) ok_force = false;
             ImGui::TextColored(ok_force ? kGreen : kAmber, "%.1f N", s.peak_force_N);
             ImGui::TableNextColumn();
             if (s.deepest_press_at_s >= 0) ImGui::Text("%.0f %%", 100 * s.collapse_ratio);

@@ -136,6 +136,36 @@ TEST(Scorer, ExcessiveForceOnly)
     EXPECT_EQ(kinds(finish(s)), std::vector<ErrorKind>{ErrorKind::excessive_force});
 }
 
+// Excessive is a force held past the limit (kExcessiveHoldS, 50 ms), not one sample's spike: a press
+// at 20 N (band 5..30) with one sample of 45 N in it is not flagged, nor two samples 20 ms apart
+// (held 20 ms); the same press holding 35 N for 60 ms is, from when it went past, with how long.
+TEST(Scorer, ExcessiveIsAForceHeldNotASpike)
+{
+    const auto scored = [](const std::vector<std::pair<double, double>>& over) {  // (time, force) replacing the press's
+        Scorer s(scenario(), {station("FV 10", -100)});
+        echo::EchoFrame frame;
+        frame.face = at(0, -100);
+        for (int i = 0; i <= 100; ++i) {
+            const double t = 0.02 * i;
+            double f = i <= 50 ? 20.0 * i / 50.0 : 20.0 * (100 - i) / 50.0;
+            for (const auto& [when, force] : over)
+                if (std::abs(when - t) < 1e-9) f = force;
+            frame.time_s = t;
+            s.observe({t, frame.face, f, &frame});
+        }
+        s.call(2.0, Call::compressible);
+        return finish(s);
+    };
+    EXPECT_TRUE(scored({{1.0, 45.0}}).errors.empty());
+    EXPECT_TRUE(scored({{1.0, 45.0}, {1.02, 40.0}}).errors.empty());
+    const ExamReport held = scored({{0.96, 35.0}, {0.98, 35.0}, {1.0, 35.0}, {1.02, 35.0}});
+    ASSERT_EQ(kinds(held), std::vector<ErrorKind>{ErrorKind::excessive_force});
+    EXPECT_NEAR(held.errors[0].time_s, 0.96, 1e-9);
+    EXPECT_NE(held.errors[0].detail.find("held there 0.06 s"), std::string::npos) << held.errors[0].detail;
+    EXPECT_NEAR(held.score, 2.0 / 3.0, 1e-12);  // reached and called right, not pressed within the band
+    EXPECT_NEAR(held.stations[0].peak_force_N, 35.0, 1e-9);
+}
+
 TEST(Scorer, SkippedStationOnly)
 {
     Scorer s(scenario(), {station("FV 10", -100), station("FV 12", -120)});
