@@ -148,8 +148,8 @@ void Scorer::observe(const ExamSample& s)
         }
         if (st.above_since_s < 0) st.above_since_s = s.time_s;
         const double held = s.time_s - st.above_since_s;
-        if (!st.excessive && held >= kExcessiveHoldS - 1e-9) st.excessive = true, st.excessive_at_s = st.above_since_s;
-        if (st.excessive) st.excessive_held_s = std::max(st.excessive_held_s, held);
+        if (!st.excessive() && held >= kExcessiveHoldS - 1e-9) st.excessive_at_s = st.above_since_s;
+        if (st.excessive()) st.excessive_held_s = std::max(st.excessive_held_s, held);
     }
     for (std::size_t i = 0; i < truth_.size(); ++i) {
         const StationTruth& t = truth_[i];
@@ -244,7 +244,7 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
         const bool measured = i < compression.size() && compression[i] && compression[i]->vein_rest_mm2 > 0;
         const bool walls_met = measured && s.collapse_ratio <= kWallsMetRatio;
         const bool enough = st.peak_force_N >= bands.adequate_force_N || walls_met;
-        const bool adequate = visited && enough && !st.excessive && st.at_peak.angle_deg <= bands.transverse_deg;
+        const bool adequate = visited && enough && !st.excessive() && st.at_peak.angle_deg <= bands.transverse_deg;
         points += int(st.reached) + int(adequate) + int(s.call_correct);
         if (visited || st.wrong_vessel) ++examined;
         if (s.call_correct) ++calls_right;
@@ -263,7 +263,7 @@ ExamReport Scorer::finish(const std::vector<std::optional<Compression>>& compres
                  measured ? format("peak %.1f N, adequate from %.1f N; the walls did not meet (lumen %.0f %% of rest)", st.peak_force_N,
                                    bands.adequate_force_N, 100 * s.collapse_ratio)
                           : format("peak %.1f N, adequate from %.1f N", st.peak_force_N, bands.adequate_force_N));
-        if (visited && st.excessive)
+        if (visited && st.excessive())
             flag(ErrorKind::excessive_force, st.excessive_at_s,
                  format("peak %.1f N, excessive above %.1f N, held there %.2f s", st.peak_force_N, bands.excessive_force_N, st.excessive_held_s));
         if (st.call != Call::none && !s.call_correct) {

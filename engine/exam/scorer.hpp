@@ -101,7 +101,7 @@ public:
     StationProgress progress(std::size_t station) const
     {
         const Tracked& st = stations_[station];
-        return {st.reached, st.peak_force_N, st.call, st.oblique, st.wrong_vessel, st.excessive};
+        return {st.reached, st.peak_force_N, st.call, st.oblique, st.wrong_vessel, st.excessive()};
     }
     // The station a call would answer now (the one examined last), if any.
     std::optional<std::size_t> last_examined() const { return last_examined_; }
@@ -134,11 +134,11 @@ private:
         double oblique_at_s = -1, oblique_angle_deg = 0;
         bool wrong_vessel = false;
         double wrong_vessel_at_s = -1;
-        // the force above the excessive limit: since when, without a break (-1: not now), and
-        // whether it stayed there kExcessiveHoldS, from when and for how long at most
+        // the force above the excessive limit: since when, without a break (-1: not now), and once
+        // it stayed there kExcessiveHoldS, from when (-1: never) and for how long at most
         double above_since_s = -1;
-        bool excessive = false;
         double excessive_at_s = -1, excessive_held_s = 0;
+        bool excessive() const { return excessive_at_s >= 0; }
         std::string wrong_vessel_which;
         Call call = Call::none;
         double call_at_s = -1;

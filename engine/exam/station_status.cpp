@@ -39,6 +39,12 @@ bool adequately_pressed(const ExamReport& report, std::size_t station)
     return report.stations.at(station).reached && !flagged_at(report, station, &too_little);
 }
 
+bool pressed_within_bands(const ExamReport& report, std::size_t station)
+{
+    constexpr ErrorKind excessive = ErrorKind::excessive_force;
+    return adequately_pressed(report, station) && !flagged_at(report, station, &excessive);
+}
+
 bool station_success(const ExamReport& report, std::size_t station)
 {
     return adequately_pressed(report, station) && report.stations[station].call_correct;

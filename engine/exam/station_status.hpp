@@ -20,8 +20,10 @@ const char* station_status_name(StationStatus s);  // "covered", "skipped", "wro
 StationStatus station_status(const ExamReport& report, std::size_t station);
 
 // The station pressed hard enough: reached, and no too-little-pressure error flagged at it (the
-// scorer judged the peak force against the case's adequate band).
+// scorer judged the peak force against the case's adequate band, or the walls met).
 bool adequately_pressed(const ExamReport& report, std::size_t station);
+// Pressed within the case's bands: adequately pressed, and no excessive force flagged at it.
+bool pressed_within_bands(const ExamReport& report, std::size_t station);
 
 // A success in the learning curve's sense: reached, adequately pressed and called right.
 bool station_success(const ExamReport& report, std::size_t station);

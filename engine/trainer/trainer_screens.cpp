@@ -9,6 +9,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "exam/station_status.hpp"
 #include "runner/frame.hpp"
 
 namespace echosim::trainer {
@@ -400,17 +401,15 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
         ImGui::TableSetupScrollFreeze(0, 1);
         for (const char* c : {"Station", "Reached", "Peak force", "Vein closed to", "Truth", "Call", ""}) ImGui::TableSetupColumn(c);
         ImGui::TableHeadersRow();
-        for (const exam::StationResult& s : r.stations) {
+        for (std::size_t i = 0; i < r.stations.size(); ++i) {
+            const exam::StationResult& s = r.stations[i];
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(s.name.c_str());
             ImGui::TableNextColumn();
             ImGui::TextColored(s.reached ? kGreen : kRed, "%s", s.reached ? "yes" : "no");
             ImGui::TableNextColumn();
-            // as scored: pressed enough (the force, or the walls met) and not held past the limit
-            bool ok_force = s.reached;
-            for (const exam::FlaggedError& e : r.errors)
-                if (e.station == s.name && (e.kind == exam::ErrorKind::too_little_pressure || e.kind == exam::ErrorKind::excessive_force)) ok_force = false;
+            const bool ok_force = exam::pressed_within_bands(r, i);  // as scored (the force, or the walls met)
             ImGui::TextColored(ok_force ? kGreen : kAmber, "%.1f N", s.peak_force_N);
             ImGui::TableNextColumn();
             if (s.deepest_press_at_s >= 0) ImGui::Text("%.0f %%", 100 * s.collapse_ratio);
