@@ -289,7 +289,7 @@ int run_window(const RunArgs& args)
             session::Session& session = runner.session();
             if (!session.haptics_note().empty()) std::printf("echosim run: %s\n", session.haptics_note().c_str());
             std::printf("echosim run: %s, %ux%u; left-drag orbits, wheel zooms; right-drag or arrows slide the probe, "
-                        "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; + and - gain, "
+                        "Q/E and A/D tilt it, R levels it, T turns it (transverse/longitudinal), W/S or Shift+wheel press it in and out; ] and [ depth, + and - gain, "
                         "Page Up and Page Down focus, Space freezes the image; V (or Home) resets the view; F11 fullscreen, Esc quits\n",
                         runner.context()->device_name().c_str(), runner.presenter()->extent().width, runner.presenter()->extent().height);
 

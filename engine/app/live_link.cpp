@@ -44,10 +44,10 @@ void LiveLink::on_attach(runner::Runner& runner)
 {
     if (!runner.frame() || !runner.context())
         throw std::invalid_argument("live link: the runner configuration '" + runner.config().name + "' draws no frame to serve");
-    const echo::ImagePlane* plane = &runner.session().image_plane();  // the runner's: it outlives the frames
     runner.frame()->echo_pass().enable_readback(
-        *runner.context(), [this, plane](const echo::EchoFrame& drawn, std::span<const std::uint8_t> grey, double wall_clock_s) {
-            fill_live_frame(live_, *plane, drawn, grey, wall_clock_s);
+        *runner.context(),
+        [this](const echo::EchoFrame& drawn, const echo::ImagePlane& plane, std::span<const std::uint8_t> grey, double wall_clock_s) {
+            fill_live_frame(live_, plane, drawn, grey, wall_clock_s);
             link_.publish(live_);
         });
 }

@@ -31,13 +31,14 @@ struct StoppedInSetUp {
 };
 
 // The image's volume: the healthy case made as `echosim run` makes it, but coarser (0.6 mm voxels
-// from 60 frames of 0.3 mm pixels), so it takes seconds, not a minute and a half; its content
+// from 60 frames of 0.3 mm pixels), so it takes seconds, not the half minute of the 0.4 mm one; its content
 // does not change what a frame costs in memory. Those seconds are tens under a sanitizer, so a
 // stop asked for meanwhile is looked at between chunks of a few frames (and the hole filling's
 // steps) and ends the making there: throws StoppedInSetUp.
 VolumePair soak_volume(const scene::LegModel& leg, const std::function<int()>& stop_requested)
 {
-    echo::CaseVolumeOptions coarse{.voxel_mm = 0.6, .frames = 60, .pixel_mm = 0.3};
+    // frames 75 mm deep, not the cases' 95: the soak's image stays the scanner's first 50 mm (pressed 25)
+    echo::CaseVolumeOptions coarse{.voxel_mm = 0.6, .frames = 60, .pixel_mm = 0.3, .depth_mm = 75.0};
     coarse.chunk_frames = 6;
     const auto look = [&](const std::string&, double) {
         if (const int signal = stop_requested ? stop_requested() : 0) throw StoppedInSetUp{signal};

@@ -66,8 +66,8 @@ std::string run_keys_help()
            "                  End finishes. Report: Enter a new lesson. Ctrl+Alt+Q quits (the only way in --kiosk)\n"
            "  the probe       right-drag or arrows slide it, W/S or Shift+wheel press it in and out, Q/E and A/D tilt it,\n"
            "                  R levels it, T turns it (transverse/longitudinal)\n"
-           "  the scanner     + and - gain, Page Up and Page Down focus, Space freezes the image; on the frozen image\n"
-           "                  two clicks measure the distance between them (the caliper)\n"
+           "  the scanner     ] and [ depth (30 to 70 mm, a centimetre a step), + and - gain, Page Up and Page Down focus,\n"
+           "                  Space freezes the image; on the frozen image two clicks measure the distance between them (the caliper)\n"
            "  the view        left-drag orbits, the wheel zooms, V (or Home) resets it; G shows the vessels and the image plane\n"
            "                  in the leg (practice guides); F11 (or F) fullscreen; Esc quits\n";
 }

@@ -24,8 +24,9 @@ namespace {
 // Bump when the phantom, the B-mode model, the sweep or the reconstruction change what they make.
 // v2: the B-mode model of the GPU kernels (issue 33); v3: the whole proximal vein course, its sweep
 // and 0.4 mm voxels (issue 31); v4: specular echoes 10 to 18 dB over the speckle, the vein's wall
-// denser than the muscle (fascial planes and vessel walls show; a closed vein's walls one line)
-constexpr const char* kRecipe = "v4";
+// denser than the muscle (fascial planes and vessel walls show; a closed vein's walls one line);
+// v5: frames 95 mm deep, for the scanner's deepest image (70 mm) pressed in 25 mm
+constexpr const char* kRecipe = "v5";
 
 // A cached pair's folder while it is being written is NAME io::kPartialMarker PID-SIX.
 using io::kPartialMarker;

@@ -43,11 +43,14 @@ WindowInput::WindowInput(gpu::Window& window) : window_(window.handle())
         if (key == GLFW_KEY_R) k.level = true;
         if (key == GLFW_KEY_T) k.turn = true;
         if (key == GLFW_KEY_G) k.toggle_guides = true;
-        // the scanner: + / - gain, Page Down / Page Up the focus deeper / shallower, Space freezes
+        // the scanner: ] / [ the image deeper / shallower, + / - gain, Page Down / Page Up the focus
+        // deeper / shallower, Space freezes
         if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) ++k.scanner.gain_steps;
         if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) --k.scanner.gain_steps;
         if (key == GLFW_KEY_PAGE_DOWN) ++k.scanner.focus_steps;
         if (key == GLFW_KEY_PAGE_UP) --k.scanner.focus_steps;
+        if (key == GLFW_KEY_RIGHT_BRACKET) ++k.scanner.depth_steps;
+        if (key == GLFW_KEY_LEFT_BRACKET) --k.scanner.depth_steps;
         if (key == GLFW_KEY_SPACE) k.scanner.toggle_freeze = !k.scanner.toggle_freeze;
         if (key == GLFW_KEY_V || key == GLFW_KEY_HOME) k.reset_camera = true;
     });

@@ -1,7 +1,7 @@
 // The mouse and keyboard of the simulator's window: left-drag orbits the camera, the wheel zooms,
 // right-drag or the arrow keys slide the probe over the patch, Q/E fan it and A/D rock it (30
 // degrees a second), R sets it upright again, T turns it a quarter about its beam (transverse to
-// longitudinal and back), + and - the gain, Page Down and Page Up the focus, Space freezes, W/S or Shift+wheel press it in and out, V (or Home)
+// longitudinal and back), ] and [ the depth, + and - the gain, Page Down and Page Up the focus, Space freezes, W/S or Shift+wheel press it in and out, V (or Home)
 // gives the default view again, G shows or hides the practice guides (the vessels and the image
 // plane in the leg), F11 (or F) toggles fullscreen, Esc quits. GLFW's callbacks collect what happened between two
 // polls; main thread only (GLFW's rule).

@@ -11,7 +11,11 @@ namespace echosim {
 struct ProbeSpec {
     double face_width_mm = 40.0;     // the face along the array (probe x); also the image width
     double face_thickness_mm = 10.0; // the face across the array (probe z)
-    double image_depth_mm = 50.0;    // how deep the image reaches along the beam (probe y)
+    double image_depth_mm = 50.0;    // how deep the image reaches along the beam (probe y), at the start
+    // the scanner's depth control: from the superficial thigh of a slim patient to a large patient's
+    // femoral vein (its centre 55 mm under the skin at the groin, its far wall at 61)
+    double image_depth_min_mm = 30.0;
+    double image_depth_max_mm = 70.0;
     double frequency_mhz = 10.0;     // centre frequency of the transmitted pulse
 
     // The pressure a force on the probe puts on the skin under its face, spread evenly [kPa]

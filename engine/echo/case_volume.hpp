@@ -13,7 +13,7 @@
 // course's L shape never needs one label volume over its whole box. The voxel map is the box of
 // all frames turned to hold them with the fewest voxels.
 //
-// Costs at the defaults (0.4 mm voxels, 1,060 frames 0.5 mm apart of 64 x 75 mm at 0.2 mm pixels):
+// Costs at the defaults (0.4 mm voxels, 1,060 frames 0.5 mm apart of 64 x 95 mm at 0.2 mm pixels):
 // a box of about 107 x 115 x 538 mm, 104 M voxels: volume and labels 208 MB, the reconstruction's
 // working memory 13 bytes a voxel (1.35 GB) while it is made.
 #pragma once
@@ -41,9 +41,10 @@ struct CaseVolumeOptions {
     double voxel_mm = 0.4;
     int frames = 1060;      // the sweep's frames along the whole course (about 0.5 mm apart)
     double pixel_mm = 0.2;  // the frames' pixels
-    // the frames' depth [mm]: the image's 50 mm and the deepest press (25 mm), so a pressed probe
-    // still finds tissue at the bottom of its image
-    double depth_mm = 75.0;
+    // the frames' depth [mm]: the deepest image (kLinearProbe.image_depth_max_mm, 70 mm) and the
+    // deepest press (session::Session::kMaxPressMm, 25 mm), so a probe pressed in all the way still
+    // finds recorded tissue at the bottom of its deepest image
+    double depth_mm = 95.0;
     LabelVolumeOptions anatomy;  // the phantom voxelised over the frames, as the imager takes it
     // What images the frames from the anatomy's label volume: empty, the CPU twin (CpuSweepImager);
     // the app layer hands the GPU's here when a device is at hand (image/bmode_gpu.hpp).

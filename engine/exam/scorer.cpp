@@ -87,7 +87,7 @@ Scorer::Scorer(const Scenario& scenario, std::vector<StationTruth> truth)
 {
 }
 
-Scorer::Geometry Scorer::geometry(const VesselAxis& axis, const Pose& face, const glm::dvec3& down)
+Scorer::Geometry Scorer::geometry(const VesselAxis& axis, const Pose& face, const glm::dvec3& down, double depth_mm)
 {
     Geometry g;
     if (axis.radius_mm <= 0) return g;
@@ -107,7 +107,7 @@ Scorer::Geometry Scorer::geometry(const VesselAxis& axis, const Pose& face, cons
     g.along_mm = parallel > 1e-6 ? (glm::dot(axis.direction, w) - across * glm::dot(down, w)) / parallel : glm::dot(w, axis.direction);
     g.lateral_mm = glm::dot(q - f, to_d(face.axis_x()));
     const double depth = glm::dot(q - f, to_d(face.axis_y()));
-    g.crosses = depth > 0 && depth < kLinearProbe.image_depth_mm;
+    g.crosses = depth > 0 && depth < depth_mm;
     return g;
 }
 
@@ -132,7 +132,7 @@ void Scorer::observe(const ExamSample& s)
     // the probe is at one station at most: the nearest along the vein of those it is over
     std::optional<std::size_t> at;
     for (std::size_t i = 0; i < truth_.size(); ++i) {
-        const Geometry g = geometry(truth_[i].vein, s.face, to_d(truth_[i].ideal_probe.axis_y()));
+        const Geometry g = geometry(truth_[i].vein, s.face, to_d(truth_[i].ideal_probe.axis_y()), s.image_depth_mm);
         geometries.push_back(g);
         if (!contact || !g.crosses || std::abs(g.along_mm) > kAlongToleranceMm) continue;
         if (std::abs(g.lateral_mm) <= bands.reach_mm && g.angle_deg <= kVisitMaxAngleDeg &&
@@ -175,7 +175,7 @@ void Scorer::observe(const ExamSample& s)
         } else if (!over_vein && pressing && !st.wrong_vessel) {
             // pressing beside the vein: over the artery or the great saphenous vein instead
             const glm::dvec3 down = to_d(t.ideal_probe.axis_y());
-            const Geometry a = geometry(t.artery, s.face, down), v = geometry(t.saphenous, s.face, down);
+            const Geometry a = geometry(t.artery, s.face, down, s.image_depth_mm), v = geometry(t.saphenous, s.face, down, s.image_depth_mm);
             const double a_reach = std::max(bands.reach_mm, t.artery.radius_mm);
             const double v_reach = std::max(bands.reach_mm, t.saphenous.radius_mm);
             if (a.crosses && std::abs(a.lateral_mm) <= a_reach && std::abs(a.lateral_mm) < std::abs(g.lateral_mm))

@@ -56,6 +56,7 @@ struct ExamSample {
     Pose face;                  // the probe's face where it is (pressed)
     double force_N = 0;         // the tissue's push on the probe
     const echo::EchoFrame* echo = nullptr;  // the image's input at this step (kept at the deepest press)
+    double image_depth_mm = kLinearProbe.image_depth_mm;  // how deep the trainee's image reaches (the scanner's depth)
 };
 
 // What the labels say at one station's deepest press (measure_compression).
@@ -120,8 +121,8 @@ private:
         bool crosses = false;     // the axis crosses the plane within the image's depth
     };
     // `down`: the station's own way into the tissue (its ideal probe's beam), along which the face
-    // is carried to the vessel to say where along it the probe sits
-    static Geometry geometry(const VesselAxis& axis, const Pose& face, const glm::dvec3& down);
+    // is carried to the vessel to say where along it the probe sits; `depth_mm`: the image's
+    static Geometry geometry(const VesselAxis& axis, const Pose& face, const glm::dvec3& down, double depth_mm);
 
     struct Tracked {
         bool reached = false;

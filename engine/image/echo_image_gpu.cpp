@@ -175,13 +175,32 @@ EchoVolumeGpu::EchoVolumeGpu(gpu::CommandPool& pool, const io::Volume& volume, c
     }
 }
 
+namespace {
+
+// The deform walk's steps the scratch must hold: the most over the depths the pipeline may be set
+// to (set_depth_mm), its rows kept. A step is no finer than a pixel, so the most is at one end of
+// the range (a deeper image walks further; one with coarser pixels than the labels, in larger steps).
+std::uint32_t deepest_walk(const io::Volume& grid, const echo::ImagePlane& plane)
+{
+    std::uint32_t most = 0;
+    for (const double depth : {plane.depth_mm, kLinearProbe.image_depth_min_mm, kLinearProbe.image_depth_max_mm}) {
+        echo::ImagePlane p = plane;
+        p.depth_mm = depth;
+        most = std::max(most, echo::deform_max_steps(grid, p));
+    }
+    return most;
+}
+
+}  // namespace
+
 EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVolumeGpu> volume, const echo::ImagePlane& plane,
                            const echo::PatientCase& patient, DeformReads reads, echo::Imaging imaging)
     : imaging_(imaging),
       volume_(std::move(volume)),
       plane_(plane),
+      initial_depth_mm_(plane.depth_mm),
       patient_(patient),
-      max_steps_((echo::check_plane(plane), echo::deform_max_steps(volume_->grid(), plane))),
+      max_steps_((echo::check_plane(plane), deepest_walk(volume_->grid(), plane))),
       map_columns_(echo::deform_columns(volume_->grid(), plane)),
       map_reads_(reads == DeformReads::texels || (reads == DeformReads::best && ctx.device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU)
                      ? DEFORM_TEXEL_READS
@@ -222,9 +241,6 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         beam_ = bmode_kernel(ctx, kernels::bmode_beam_comp, "bmode_beam.comp");
         axial_ = bmode_kernel(ctx, kernels::bmode_axial_comp, "bmode_axial.comp");
         lateral_ = bmode_kernel(ctx, kernels::bmode_lateral_comp, "bmode_lateral.comp");
-        const kernels::BModeParams params = echo::bmode_live_params(plane_);
-        bmode_params_ = gpu::Buffer(ctx, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
-        bmode_params_.write(bytes_of(params));
     }
     deform_.prepare(DEFORM_SOLVE);
     deform_.prepare(DEFORM_MAP | map_reads_);
@@ -278,6 +294,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
                         gpu::Binding::texel(slot.generated_texels)});
         if (!generative) continue;
         slot.live = gpu::Buffer(ctx, sizeof(kernels::BModeLiveFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
+        slot.bmode_params = gpu::Buffer(ctx, sizeof(kernels::BModeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUse::host_visible);
         slot.field = gpu::Buffer(ctx, pixels * 8, storage_and_texels, gpu::MemoryUse::device_local);
         slot.codes = gpu::Buffer(ctx, pixels * 4, storage_and_texels, gpu::MemoryUse::device_local);
         slot.beam = gpu::Buffer(ctx, pixels * 8, storage_and_texels, gpu::MemoryUse::device_local);
@@ -286,7 +303,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         slot.code_texels = gpu::TexelView(ctx, slot.codes, VK_FORMAT_R32_UINT, "the live frame's tissue codes");
         slot.beam_texels = gpu::TexelView(ctx, slot.beam, VK_FORMAT_R32G32_SFLOAT, "the B-mode field down the beam (buffer B)");
         // bindings 1 and 9 (the sweep's poses and envelope) no live pass reads: stand-ins of their kinds
-        const gpu::Binding bmode[] = {gpu::Binding::uniform(bmode_params_), gpu::Binding::uniform(slot.live),
+        const gpu::Binding bmode[] = {gpu::Binding::uniform(slot.bmode_params), gpu::Binding::uniform(slot.live),
                                 gpu::Binding::texel(volume_->label_texels()), gpu::Binding::storage(slot.field),
                                 gpu::Binding::storage(slot.codes),          gpu::Binding::storage(slot.beam),
                                 gpu::Binding::texel(slot.beam_texels),      gpu::Binding::storage(slot.generated),
@@ -311,8 +328,8 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     Slot& slot = slots_[std::size_t(slot_index)];
     const bool warped = !frame.columns.empty();
     const bool all = stages == Stages::all;
+    // the walk's steps at this depth (the scratch holds the deepest's: max_steps_)
     echo::KernelParams k = echo::make_kernel_params(volume_->grid(), plane_, frame, scanner_, patient_, volume_->labelled());
-    k.deform.max_steps = max_steps_;
     if (want_labels && volume_->labelled()) k.slice.flags |= SLICE_LABELS;
     if (all) k.slice.flags |= SLICE_POST;
     if (volume_->packed()) k.slice.flags |= SLICE_PACKED;
@@ -329,6 +346,10 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
         k.slice.flags &= ~std::uint32_t(SLICE_PACKED);
         const kernels::BModeLiveFrame live{echo::bmode_pose(frame.face), k.slice};
         slot.live.write(bytes_of(live));
+        if (slot.bmode_depth_mm != plane_.depth_mm) {  // the tables down the beam go a row a pixel: remade with the depth
+            slot.bmode_params.write(bytes_of(echo::bmode_live_params(plane_)));
+            slot.bmode_depth_mm = plane_.depth_mm;
+        }
     }
     std::uint32_t active = 0;
     if (warped && stages != Stages::slice_only) active |= 1u << kSolve | 1u << kMapStage;
@@ -388,6 +409,20 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
         }
         }
     });
+}
+
+std::pair<double, double> EchoImageGpu::depth_range() const
+{
+    return {std::min(kLinearProbe.image_depth_min_mm, initial_depth_mm_), std::max(kLinearProbe.image_depth_max_mm, initial_depth_mm_)};
+}
+
+void EchoImageGpu::set_depth_mm(double depth_mm)
+{
+    const auto [shallowest, deepest] = depth_range();
+    if (!(depth_mm >= shallowest && depth_mm <= deepest))
+        throw std::invalid_argument("echographic image: depth " + std::to_string(depth_mm) + " mm is outside the " + std::to_string(shallowest) +
+                                    " to " + std::to_string(deepest) + " mm this pipeline was made for");
+    plane_.depth_mm = depth_mm;
 }
 
 void EchoImageGpu::enable_readback(const gpu::Context& ctx)

@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 
 #include "echo/echo_frame.hpp"
 #include "echo/kernel_params.hpp"
@@ -114,7 +115,14 @@ public:
                  const echo::PatientCase& patient, DeformReads reads = DeformReads::best,
                  echo::Imaging imaging = echo::Imaging::interpolative);
 
+    // The plane the next frames are recorded with: the one made with, at the depth set last.
     const echo::ImagePlane& plane() const { return plane_; }
+    // The scanner's depth control: the frames recorded from now on reach `depth_mm` down the beam,
+    // in the same rows (finer or coarser pixels), as a scanner's depth knob changes the scale. Within
+    // depth_range(): kLinearProbe's image_depth_min_mm to image_depth_max_mm, and the depth made
+    // with. Throws std::invalid_argument naming the depth otherwise.
+    void set_depth_mm(double depth_mm);
+    std::pair<double, double> depth_range() const;
     echo::Imaging imaging() const { return imaging_; }
     const io::Volume& volume_grid() const { return volume_->grid(); }  // the volume's geometry (no voxels)
     echo::ScannerSettings& scanner() { return scanner_; }
@@ -157,20 +165,22 @@ private:
         // generative imaging's (bmode_bindings.h): the live frame, buffers A and B, the codes, the
         // generated grey and tissue bytes; interpolative imaging: only `generated`, a stand-in
         gpu::Buffer live, field, codes, beam, generated, generated_codes;
+        gpu::Buffer bmode_params;  // uniform: echo::bmode_live_params at bmode_depth_mm, remade when the depth changes
+        double bmode_depth_mm = 0;
         gpu::TexelView field_texels, code_texels, beam_texels, generated_texels;
     };
     echo::Imaging imaging_;
     std::shared_ptr<const EchoVolumeGpu> volume_;
     echo::ImagePlane plane_;
+    double initial_depth_mm_;
     echo::PatientCase patient_;
     echo::ScannerSettings scanner_;
-    std::uint32_t max_steps_ = 0;
+    std::uint32_t max_steps_ = 0;    // the scratch's steps a column: the deepest walk of depth_range()
     std::uint32_t map_columns_ = 0;  // the deform stage's columns (echo::deform_columns)
     std::uint32_t map_reads_ = 0;    // DEFORM_TEXEL_READS or 0: the map pass's variant bit
     gpu::StageList stages_;          // the frame's stages and what each reads and writes (echo_image_gpu.cpp)
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
-    gpu::Buffer bmode_params_;  // uniform, written once (generative imaging)
     std::array<Slot, gpu::kFramesInFlight> slots_;
     // last, so destroyed first: they wait for the device before the resources they bind go
     gpu::ComputeKernel deform_, slice_;

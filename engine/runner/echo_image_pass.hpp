@@ -23,9 +23,11 @@ namespace echosim::runner {
 
 class EchoImagePass final : public gpu::FramePass {
 public:
-    // A frame drawn and read back: its input, its displayed image (grey bytes, row-major), and the wall
-    // clock [s since the UNIX epoch] when its input was set.
-    using ReadbackSink = std::function<void(const echo::EchoFrame& frame, std::span<const std::uint8_t> grey, double wall_clock_s)>;
+    // A frame drawn and read back: its input, the plane it was drawn in (the depth may have changed
+    // since), its displayed image (grey bytes, row-major), and the wall clock [s since the UNIX
+    // epoch] when its input was set.
+    using ReadbackSink = std::function<void(const echo::EchoFrame& frame, const echo::ImagePlane& plane, std::span<const std::uint8_t> grey,
+                                            double wall_clock_s)>;
 
     // `panel` must come after this pass in the frame's passes; all three must outlive the frames.
     EchoImagePass(image::EchoImageGpu& pipeline, render::ImagePanelPass& panel, const gpu::Sampler& sampler)
@@ -60,11 +62,12 @@ public:
     void record(const gpu::PassContext& frame) override
     {
         Drawn& drawn = drawn_[std::size_t(frame.slot)];
-        if (sink_ && drawn.valid) sink_(drawn.frame, pipeline_.readback(frame.slot), drawn.wall_clock_s);
+        if (sink_ && drawn.valid) sink_(drawn.frame, drawn.plane, pipeline_.readback(frame.slot), drawn.wall_clock_s);
         pipeline_.record(frame.cmd, frame.slot, frame_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         panel_.show(pipeline_.image(frame.slot), sampler_);
         if (sink_) {
             drawn.frame = frame_;  // keeps its storage: no allocation per frame
+            drawn.plane = pipeline_.plane();
             drawn.wall_clock_s = wall_clock_s_;
             drawn.valid = true;
         }
@@ -74,6 +77,7 @@ private:
     // what a slot's last frame was drawn from
     struct Drawn {
         echo::EchoFrame frame;
+        echo::ImagePlane plane;
         double wall_clock_s = 0;
         bool valid = false;
     };

@@ -29,7 +29,7 @@ SimulatorFrame::SimulatorFrame(const gpu::Context& ctx, gpu::CommandPool& comman
       smooth_(ctx, gpu::Filter::linear), panel_(ctx, format, {}), echo_pass_(echo_image_, panel_, smooth_), cue_pass_(commands, format),
       commands_(commands), drawn_window_(scene.session.window_serial())
 {
-    const PassSetup setup{ctx, commands, format, scene, panel_};
+    const PassSetup setup{ctx, commands, format, scene, panel_, echo_image_};
     std::vector<std::pair<PassPlace, gpu::FramePass*>> made;
     for (const PassFactory& f : extra) {
         if (!f.make) throw std::invalid_argument("frame: a configuration's pass has no factory");
@@ -69,11 +69,13 @@ void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& 
     }
     scene_pass_.set_view(scene.frame_view(state));
     echo_pass_.set_frame(*state.echo);
-    const render::TargetRect panel = echo_panel_rect(extent, scene.session.image_plane());
+    // the displayed plane: the session's, at the depth the scanner's control set
+    const echo::ImagePlane& plane = echo_image_.plane();
+    const render::TargetRect panel = echo_panel_rect(extent, plane);
     panel_.set_rect(panel);
-    scene_pass_.set_area(scene_rect(extent, scene.session.image_plane()));
+    scene_pass_.set_area(scene_rect(extent, plane));
     // frozen, the image and its cue stay those of the frame it was frozen on
-    const ImageCue cue = echo_pass_.frozen() ? cue_pass_.cue() : image_cue(*state.echo, scene.session.image_plane(), echo_image_.volume_grid());
+    const ImageCue cue = echo_pass_.frozen() ? cue_pass_.cue() : image_cue(*state.echo, plane, echo_image_.volume_grid());
     cue_pass_.set(cue, panel, extent);
     for (SessionPass* p : following_) p->set(state, extent);
 }

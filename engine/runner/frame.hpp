@@ -55,6 +55,9 @@ struct PassSetup {
     // the image panel: a pass at PassPlace::image that makes the panel's image itself (a B-mode
     // pass) shows it there from its record(), after the echographic image pass has shown its own
     render::ImagePanelPass& panel;
+    // the echographic image's pipeline: its plane() is the displayed image's (the depth control
+    // changes it between frames)
+    const image::EchoImageGpu& echo_image;
 };
 
 // A configuration's pass that follows the session: before each frame it is drawn, it gets the

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "echo/phantom.hpp"
 #include "echo/vein_course.hpp"
@@ -104,7 +105,7 @@ TubeMesh tube_mesh(const GuideLine& line, int sides)
 }
 
 GuidePass::GuidePass(const PassSetup& setup, std::vector<GuideLine> vessels, std::shared_ptr<const GuideSwitch> shown)
-    : ctx_(setup.ctx), scene_(setup.scene), shown_(std::move(shown)),
+    : ctx_(setup.ctx), scene_(setup.scene), echo_image_(setup.echo_image), shown_(std::move(shown)),
       pipeline_(setup.ctx.device(), VK_NULL_HANDLE, {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(GuidePush)},
                 "practice guides", [&](VkPipelineLayout layout) { return make_guide_pipeline(setup.ctx.device(), layout, setup.format); })
 {
@@ -121,10 +122,10 @@ GuidePass::GuidePass(const PassSetup& setup, std::vector<GuideLine> vessels, std
         const TubeMesh m = tube_mesh(line);
         if (!m.indices.empty()) vessels_.push_back(upload(m.positions, m.indices, line.colour));
     }
-    // the image plane in the probe's frame: across the array (x), down the beam (y) from the face
-    const echo::ImagePlane& p = setup.scene.session.image_plane();
-    const float w = float(p.width_mm / 2), d = float(p.depth_mm);
-    plane_ = upload({{-w, 0.0f, 0.0f}, {w, 0.0f, 0.0f}, {-w, d, 0.0f}, {w, d, 0.0f}}, {0, 1, 2, 2, 1, 3}, kPlane);
+    // the image plane in the probe's frame: across the array (x), down the beam (y) from the face,
+    // a millimetre deep: drawn scaled to the displayed image's depth
+    const float w = float(echo_image_.plane().width_mm / 2);
+    plane_ = upload({{-w, 0.0f, 0.0f}, {w, 0.0f, 0.0f}, {-w, 1.0f, 0.0f}, {w, 1.0f, 0.0f}}, {0, 1, 2, 2, 1, 3}, kPlane);
 }
 
 // frames in flight may still use the pipeline and the buffers (gpu/frame.hpp, "Lifetime")
@@ -135,7 +136,8 @@ void GuidePass::set(const session::SessionView& state, VkExtent2D) { probe_to_wo
 void GuidePass::record(const gpu::PassContext& frame)
 {
     if (!shown_->shown) return;
-    const VkRect2D area = render::target_pixels(scene_rect(frame.target.extent, scene_.session.image_plane()), frame.target.extent);
+    const echo::ImagePlane& plane = echo_image_.plane();
+    const VkRect2D area = render::target_pixels(scene_rect(frame.target.extent, plane), frame.target.extent);
     if (area.extent.width == 0 || area.extent.height == 0) return;
 
     render::begin_rendering_over(frame.cmd, frame.target.view, area, target_use().attachment_load_op());
@@ -151,7 +153,7 @@ void GuidePass::record(const gpu::PassContext& frame)
         vkCmdDrawIndexed(frame.cmd, d.index_count, 1, 0, 0, 0);
     };
     for (const Drawn& d : vessels_) draw(d, glm::mat4(1.0f));
-    draw(plane_, probe_to_world_);
+    draw(plane_, glm::scale(probe_to_world_, glm::vec3(1.0f, float(plane.depth_mm), 1.0f)));
     vkCmdEndRendering(frame.cmd);
 }
 

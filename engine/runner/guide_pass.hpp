@@ -70,6 +70,7 @@ private:
     };
     const gpu::Context& ctx_;
     const DefaultScene& scene_;
+    const image::EchoImageGpu& echo_image_;  // its plane() the displayed image's
     std::shared_ptr<const GuideSwitch> shown_;
     gpu::Pipeline pipeline_;
     std::vector<Drawn> vessels_;

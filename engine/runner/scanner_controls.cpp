@@ -14,10 +14,20 @@ echo::ScannerSettings adjusted(const echo::ScannerSettings& s, const ScannerInpu
     return out;
 }
 
+double adjusted_depth(double depth_mm, int steps, double shallowest, double deepest)
+{
+    return std::clamp(depth_mm + kDepthStepMm * steps, shallowest, deepest);
+}
+
 void apply(SimulatorFrame& frame, const ScannerInput& in)
 {
-    echo::ScannerSettings& s = frame.echo_image().scanner();
-    s = adjusted(s, in, frame.echo_image().plane().depth_mm);
+    image::EchoImageGpu& image = frame.echo_image();
+    if (in.depth_steps != 0 && !frame.echo_pass().frozen()) {
+        const auto [shallowest, deepest] = image.depth_range();
+        image.set_depth_mm(adjusted_depth(image.plane().depth_mm, in.depth_steps, shallowest, deepest));
+    }
+    echo::ScannerSettings& s = image.scanner();
+    s = adjusted(s, in, image.plane().depth_mm);
     if (in.toggle_freeze) frame.echo_pass().set_frozen(!frame.echo_pass().frozen());
 }
 
@@ -25,8 +35,8 @@ std::string scanner_status(SimulatorFrame& frame)
 {
     const echo::ScannerSettings& s = frame.echo_image().scanner();
     char text[128];
-    std::snprintf(text, sizeof text, "%s image, gain %+.0f dB, focus %.1f mm%s", echo::imaging_name(frame.echo_image().imaging()), s.gain_db,
-                  s.focus_mm, frame.echo_pass().frozen() ? ", FROZEN" : "");
+    std::snprintf(text, sizeof text, "%s image, depth %.1f cm, gain %+.0f dB, focus %.1f mm%s", echo::imaging_name(frame.echo_image().imaging()),
+                  frame.echo_image().plane().depth_mm / 10, s.gain_db, s.focus_mm, frame.echo_pass().frozen() ? ", FROZEN" : "");
     return text;
 }
 

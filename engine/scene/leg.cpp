@@ -343,9 +343,11 @@ Mesh make_linear_probe(const ProbeSpec& spec)
     o.flat_cap_color = {0.08f, 0.09f, 0.10f};  // the acoustic lens
     o.end = Cap::flat;
     Mesh m = build_tube(t, o);
-    // the cable is dark
-    for (auto& v : m.vertices)
+    // the cable is dark; the head's -x end is the orientation marker (a probe's notch or light)
+    for (auto& v : m.vertices) {
         if (v.position.y < -120.0f) v.color = {0.12f, 0.12f, 0.13f};
+        if (v.position.y < -3.0f && v.position.y > -23.0f && v.position.x < -0.8f * hw) v.color = kMarkerColour;
+    }
     return m;
 }
 

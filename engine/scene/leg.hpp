@@ -121,7 +121,9 @@ private:
 };
 
 // The linear vascular probe in its own frame (origin at the centre of the face, +x along the array,
-// +y into the tissue, so the body extends towards -y), its face the size `spec` gives (x by z).
+// +y into the tissue, so the body extends towards -y), its face the size `spec` gives (x by z). Its
+// head's -x end carries the orientation marker in kMarkerColour: the side the image's left shows.
+inline constexpr glm::vec3 kMarkerColour{0.30f, 0.85f, 0.40f};
 Mesh make_linear_probe(const ProbeSpec& spec = kLinearProbe);
 
 }  // namespace echosim::scene

@@ -44,6 +44,7 @@ Guidance guide(const Pose& probe, const exam::StationTruth& station, const exam:
         g.turn_deg = t;
     }
     g.tilt_deg = std::acos(std::min(1.0, std::abs(glm::dot(b, beam)))) * kRadToDeg;
+    g.vein_far_mm = glm::dot(station.vein.centre - target, beam) + station.vein.radius_mm;
     g.there = std::abs(g.along_mm) <= exam::kAlongToleranceMm && std::abs(g.across_mm) <= bands.reach_mm &&
               std::abs(g.turn_deg) <= bands.transverse_deg;
     return g;
@@ -59,12 +60,18 @@ GuidanceLevel guidance_level(Difficulty d)
     return {};
 }
 
-std::string guidance_text(const Guidance& g, const GuidanceLevel& level)
+std::string guidance_text(const Guidance& g, const GuidanceLevel& level, double image_depth_mm)
 {
     if (!level.text) return "";
-    if (g.there) return "At the station: press until the vein closes, then call.";
-    std::string s;
     char buf[96];
+    std::string deeper;
+    if (g.vein_far_mm > image_depth_mm) {
+        if (level.numbers) std::snprintf(buf, sizeof buf, " The vein lies %.0f mm deep: deepen the image (]).", g.vein_far_mm);
+        else std::snprintf(buf, sizeof buf, " The vein lies below the image: deepen it (]).");
+        deeper = buf;
+    }
+    if (g.there) return "At the station: press until the vein closes, then call." + deeper;
+    std::string s;
     auto add = [&](const char* part) { s += (s.empty() ? "" : ", ") + std::string(part); };
     if (std::abs(g.along_mm) >= kSmallMm) {
         const char* way = g.along_mm > 0 ? "towards the groin" : "towards the knee";
@@ -85,9 +92,9 @@ std::string guidance_text(const Guidance& g, const GuidanceLevel& level)
         add(buf);
     }
     if (g.tilt_deg > kTiltAdviceDeg) add("level the probe (R)");
-    if (s.empty()) return "Almost there: centre the vein under the probe.";
+    if (s.empty()) return "Almost there: centre the vein under the probe." + deeper;
     s[0] = char(std::toupper(static_cast<unsigned char>(s[0])));
-    return s + ".";
+    return s + "." + deeper;
 }
 
 }  // namespace echosim::trainer

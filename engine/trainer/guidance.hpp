@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/pose.hpp"
+#include "core/probe_spec.hpp"
 #include "exam/scenario.hpp"
 #include "exam/station_truth.hpp"
 #include "trainer/lesson.hpp"
@@ -24,6 +25,7 @@ struct Guidance {
     double turn_deg = 0;   // turn about the beam, + clockwise seen from above
     double tilt_deg = 0;   // the beam from the skin's normal at the station (the ideal probe's beam)
     bool there = false;    // within the scorer's tolerances of the station (along, across, turn)
+    double vein_far_mm = 0;  // the vein's far wall under the station's ideal probe, down its beam, at rest
 };
 
 Guidance guide(const Pose& probe, const exam::StationTruth& station, const exam::ScoringBands& bands);
@@ -37,7 +39,9 @@ struct GuidanceLevel {
 GuidanceLevel guidance_level(Difficulty d);
 
 // The sentence: "Slide 32 mm towards the groin, 6 mm towards the image's left; turn 20 deg
-// clockwise." ("At the station: press until the vein closes, then call." when there.)
-std::string guidance_text(const Guidance& g, const GuidanceLevel& level);
+// clockwise." ("At the station: press until the vein closes, then call." when there.) When the
+// vein's far wall lies below an image `image_depth_mm` deep, it also says to deepen the image, as a
+// sonographer sets the depth before pressing: "The vein lies 61 mm deep: deepen the image (])."
+std::string guidance_text(const Guidance& g, const GuidanceLevel& level, double image_depth_mm = kLinearProbe.image_depth_mm);
 
 }  // namespace echosim::trainer

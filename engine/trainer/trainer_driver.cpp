@@ -32,12 +32,20 @@ runner::PassFactory TrainerDriver::pass()
                 if (options_.ui_scale) o.scale = options_.ui_scale();
                 auto p = std::make_unique<ui::UiPass>(setup, o);
                 p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
-                    act(draw_trainer(*trainer_, view, extent, ui_->fonts(), ui_->scale(), screens_));
+                    const echo::ImagePlane plane = image_plane();
+                    act(draw_trainer(*trainer_, view, plane, extent, ui_->fonts(), ui_->scale(), screens_));
+                    if (trainer_->screen() == Screen::exam) draw_scanner_marks(image_panel(extent, plane), ui_->fonts(), ui_->scale());
                     update_caliper(extent);
                 });
                 ui_ = p.get();
                 return p;
             }};
+}
+
+echo::ImagePlane TrainerDriver::image_plane()
+{
+    if (runner::SimulatorFrame* frame = runner_ ? runner_->frame() : nullptr) return frame->echo_image().plane();
+    return runner_ ? runner_->session().image_plane() : echo::ImagePlane{};
 }
 
 void TrainerDriver::update_caliper(VkExtent2D extent)
@@ -79,7 +87,7 @@ void TrainerDriver::on_step(runner::StepContext& step)
     const session::SessionView& v = step.view;
     Trainer& t = *trainer_;
     // the scorer first, as `echosim exam` scores: the calls of this step answer what it saw
-    if (t.screen() == Screen::exam) t.observe({v.time_s, v.probe, v.probe_force_N, v.echo});
+    if (t.screen() == Screen::exam) t.observe({v.time_s, v.probe, v.probe_force_N, v.echo, image_plane().depth_mm});
     bool active = false;
     for (const ui::UiInput& in : pending_) {
         act(t.keys(in, v.time_s, ui_ && ui_->wants_text()));

@@ -73,6 +73,8 @@ private:
     void act(Action a);
     // The caliper's clicks and drawing, in the UI pass's draw callback.
     void update_caliper(VkExtent2D extent);
+    // The displayed image's plane (its depth the scanner's control's), the session's without a frame.
+    echo::ImagePlane image_plane();
 
     std::shared_ptr<Trainer> trainer_;
     DriverOptions options_;

@@ -11,6 +11,7 @@
 
 #include "exam/station_status.hpp"
 #include "runner/frame.hpp"
+#include "scene/leg.hpp"
 
 namespace echosim::trainer {
 namespace {
@@ -126,9 +127,10 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
     }
     ImGui::Spacing();
     ImGui::Separator();
-    ImGui::TextColored(kGrey, "In the exam: C compressible, N not compressible, End finish, H guidance on/off.");
-    ImGui::TextColored(kGrey, "The probe: right-drag or arrows slide it, W/S press, Q/E and A/D tilt, R levels it.");
-    ImGui::TextColored(kGrey, "%s", t.options().kiosk ? "Instructor: Ctrl+Alt+Q quits." : "Esc or Ctrl+Alt+Q quits.");
+    ImGui::TextColored(kGrey, "In the exam: C compressible, N not compressible, End finish, H guidance on/off. %s",
+                       t.options().kiosk ? "Instructor: Ctrl+Alt+Q quits." : "Esc or Ctrl+Alt+Q quits.");
+    ImGui::TextColored(kGrey, "The probe: right-drag or arrows slide, W/S press, Q/E A/D tilt, R levels; green marker to the patient's right.");
+    ImGui::TextColored(kGrey, "The scanner: ] and [ depth, + and - gain, Page Up/Down focus, Space freezes (then click twice to measure).");
     ImGui::End();
     return action;
 }
@@ -242,14 +244,15 @@ void force_gauge(double force_N, const exam::ScoringBands& bands, float width, f
     dl->AddText(ImVec2(x_of(bands.excessive_force_N) - 8 * scale, o.y + h + 2 * scale), u32(kRed), buf);
 }
 
-Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale, ScreenState& state)
+Action exam_screen(Trainer& t, const session::SessionView& view, const echo::ImagePlane& plane, VkExtent2D extent, const ui::UiFonts& fonts,
+                   float scale, ScreenState& state)
 {
     Action action = Action::none;
     const exam::Scenario& lesson = t.lesson();
     const exam::Scorer& scorer = t.scorer();
     const std::vector<exam::StationTruth>& truth = scorer.truth();
     // the panel over the leg's view, left of the echographic image
-    const render::TargetRect image = runner::echo_panel_rect(extent, echo::ImagePlane{});
+    const render::TargetRect image = runner::echo_panel_rect(extent, plane);
     const float image_left = image.x * float(extent.width);
     const float w = std::min(400.0f * scale, std::max(200.0f, image_left * 0.6f));
     ImGui::SetNextWindowPos(ImVec2(8 * scale, 8 * scale));
@@ -284,7 +287,7 @@ Action exam_screen(Trainer& t, const session::SessionView& view, VkExtent2D exte
     if (target) g = guide(view.probe, truth[*target], lesson.bands);
     if (g && level.text) {
         ImGui::PushTextWrapPos(w - 12 * scale);
-        ImGui::TextColored(kAmber, "%s", guidance_text(*g, level).c_str());
+        ImGui::TextColored(kAmber, "%s", guidance_text(*g, level, plane.depth_mm).c_str());
         ImGui::PopTextWrapPos();
     } else if (!target) {
         ImGui::TextColored(kGreen, "Finish the exam to see the report (End).");
@@ -462,15 +465,15 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
 
 }  // namespace
 
-Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale,
-                    ScreenState& state)
+Action draw_trainer(Trainer& trainer, const session::SessionView& view, const echo::ImagePlane& plane, VkExtent2D extent,
+                    const ui::UiFonts& fonts, float scale, ScreenState& state)
 {
     const Screen shown = trainer.screen();
     if (shown != state.last) state.hotspots.clear();
     Action a = Action::none;
     switch (shown) {
     case Screen::start: a = start_screen(trainer, view, extent, fonts, scale, state); break;
-    case Screen::exam: a = exam_screen(trainer, view, extent, fonts, scale, state); break;
+    case Screen::exam: a = exam_screen(trainer, view, plane, extent, fonts, scale, state); break;
     case Screen::report: a = report_screen(trainer, extent, fonts, scale, state); break;
     }
     state.last = shown;
@@ -516,6 +519,36 @@ void draw_caliper(const Caliper& caliper, const ImagePanel& panel, const ui::UiF
     dl->AddRectFilled(ImVec2(o.x - 6 * scale, o.y - 3 * scale), ImVec2(o.x + size.x + 6 * scale, o.y + size.y + 3 * scale), u32(shade), 4 * scale);
     dl->AddText(o, u32(mark), text);
     ImGui::PopFont();
+}
+
+void draw_scanner_marks(const ImagePanel& panel, const ui::UiFonts& fonts, float scale)
+{
+    if (!(panel.depth_mm > 0) || panel.height <= 0) return;
+    ImDrawList* dl = ImGui::GetForegroundDrawList();
+    const ImVec4 text_colour(0.92f, 0.92f, 0.92f, 1.0f), shade(0.0f, 0.0f, 0.0f, 0.8f);
+    // dark under light, a pixel down and right: it reads on bright speckle and dark lumen alike
+    const auto label = [&](const ImVec2& at, const char* text) {
+        dl->AddText(ImVec2(at.x + scale, at.y + scale), u32(shade), text);
+        dl->AddText(at, u32(text_colour), text);
+    };
+    ImGui::PushFont(fonts.bold);
+    char text[32];
+    const float beside = panel.x + 0.03f * panel.width + 4 * scale;  // right of a major tick (3 % of the width)
+    for (int cm = 1; 10.0 * cm < panel.depth_mm; ++cm) {
+        std::snprintf(text, sizeof text, "%d", cm);
+        const float y = panel.y + float(10.0 * cm / panel.depth_mm) * panel.height;
+        label(ImVec2(beside, y - 0.5f * ImGui::GetTextLineHeight()), text);
+    }
+    std::snprintf(text, sizeof text, "%.1f cm", panel.depth_mm / 10);
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    label(ImVec2(panel.x + panel.width - size.x - 6 * scale, panel.y + panel.height - size.y - 4 * scale), text);
+    ImGui::PopFont();
+    // the orientation marker: the probe's marker colour, ringed dark, clear of the ticks and labels
+    const float r = 6 * scale;
+    const ImVec2 dot(panel.x + 0.03f * panel.width + 28 * scale, panel.y + 12 * scale);
+    const glm::vec3 c = scene::kMarkerColour;
+    dl->AddCircleFilled(dot, r + 1.5f * scale, u32(shade));
+    dl->AddCircleFilled(dot, r, u32(ImVec4(c.r, c.g, c.b, 1.0f)));
 }
 
 }  // namespace echosim::trainer

@@ -37,14 +37,23 @@ struct ScreenState {
     std::map<std::string, Rect> hotspots;
 };
 
-// Draws the trainer's current screen into a frame of `extent` (ImGui's context current); returns
-// what a clicked button asks of the driver.
-Action draw_trainer(Trainer& trainer, const session::SessionView& view, VkExtent2D extent, const ui::UiFonts& fonts, float scale,
-                    ScreenState& state);
+// Draws the trainer's current screen into a frame of `extent` (ImGui's context current), the
+// echographic image shown in `plane` (its depth the scanner's); returns what a clicked button asks
+// of the driver.
+Action draw_trainer(Trainer& trainer, const session::SessionView& view, const echo::ImagePlane& plane, VkExtent2D extent,
+                    const ui::UiFonts& fonts, float scale, ScreenState& state);
 
 // Draws the caliper over the frozen image (ImGui's context current, inside the draw callback):
 // its points as crosses, the line between them, the distance by the second, and a line at the
 // image's top saying the image is frozen and how to measure.
 void draw_caliper(const Caliper& caliper, const ImagePanel& panel, const ui::UiFonts& fonts, float scale);
+
+// Draws the scanner's marks over the image (ImGui's context current, inside the draw callback), as
+// a scanner's screen shows them: each centimetre's tick (the post stage's major ticks,
+// compute/post_bindings.h) numbered in cm beside it, the image's whole depth at its bottom right
+// ("7.0 cm"), and the orientation marker at its top left: the image's left is the side of the
+// probe's marker (probe -x; scene::make_linear_probe colours it kMarkerColour), which the exam
+// keeps towards the patient's right (echo::Phantom::transverse_probe_pose).
+void draw_scanner_marks(const ImagePanel& panel, const ui::UiFonts& fonts, float scale);
 
 }  // namespace echosim::trainer

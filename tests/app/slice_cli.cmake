@@ -14,11 +14,16 @@ function(run_ok what)
   endif()
   set(last_out "${out}${err}" PARENT_SCOPE)
 endfunction()
-run_ok("first slice" slice --coarse --out ${WORK}/a.png --gpu cpu --validation)
+# the scanner's deepest image (70 mm) with the probe pressed in all the way (25 mm): the case's
+# volume holds all of it (its frames are 95 mm deep), no band beyond the recorded sweep
+run_ok("first slice" slice --coarse --out ${WORK}/a.png --press-mm 25 --depth-mm 70 --gpu cpu --validation)
 # the cache's folder is named by the case, the voxel and the recipe's version (app/volume_source.hpp)
 file(GLOB cached ${WORK}/cache/echosim/volumes/healthy-0.6mm-v*/labels.nrrd)
 if(NOT last_out MATCHES "made and cached in" OR NOT cached)
   message(FATAL_ERROR "the default volume was not made and cached:\n${last_out}")
+endif()
+if(last_out MATCHES "outside the volume" OR NOT last_out MATCHES "probe pressed 25.0 mm")
+  message(FATAL_ERROR "the deepest image pressed in all the way was not all in the volume:\n${last_out}")
 endif()
 # its progress, read from a pipe as a log would: whole lines, a stage's at 0, 25, 50, 75 and 100 %
 # only, with no carriage return or terminal code (a terminal gets one line rewritten in place)

@@ -48,8 +48,9 @@ Pose at(double x, double z, double tilt_deg = 0)
     return p;
 }
 
-// Presses at `pose` up to `peak` N over 1 s (100 samples) and back, from `t0` [s]; returns the end time.
-double press(Scorer& scorer, const Pose& pose, double peak, double t0)
+// Presses at `pose` up to `peak` N over 1 s (100 samples) and back, from `t0` [s], the image
+// `image_depth_mm` deep; returns the end time.
+double press(Scorer& scorer, const Pose& pose, double peak, double t0, double image_depth_mm = kLinearProbe.image_depth_mm)
 {
     echo::EchoFrame frame;
     frame.face = pose;
@@ -57,7 +58,7 @@ double press(Scorer& scorer, const Pose& pose, double peak, double t0)
         const double t = t0 + 0.02 * i;
         const double f = peak * (i <= 50 ? i / 50.0 : (100 - i) / 50.0);
         frame.time_s = t;
-        scorer.observe({t, pose, f, &frame});
+        scorer.observe({t, pose, f, &frame, image_depth_mm});
     }
     return t0 + 2.0;
 }
@@ -92,6 +93,25 @@ TEST(Scorer, CorrectExamHasNoErrorsAndFindsTheClot)
     EXPECT_DOUBLE_EQ(r.excessive_force_N, 30);
     // the path: from the first station to the second, 20 mm
     EXPECT_NEAR(r.motion.path_mm, 20.0, 1e-3);
+}
+
+// The vein must be in the image the trainee sees: under a large patient's fat, 55 mm down, it is
+// below a 50 mm image (the station not reached, skipped, though the probe pressed right over it)
+// and within a 70 mm one (reached, no error).
+TEST(Scorer, AVeinBelowTheImageIsNotReached)
+{
+    StationTruth deep = station("CFV", -100);
+    deep.vein.centre.y = deep.artery.centre.y = 55.0;
+    for (const double depth : {50.0, 70.0}) {
+        SCOPED_TRACE(depth);
+        Scorer s(scenario(), {deep});
+        s.call(press(s, at(0, -100), 8, 0, depth), Call::compressible);
+        const ExamReport r = finish(s);
+        ASSERT_EQ(r.stations.size(), 1u);
+        EXPECT_EQ(r.stations[0].reached, depth > 55.0);
+        if (depth > 55.0) EXPECT_TRUE(r.errors.empty()) << error_name(r.errors.front().kind);
+        else EXPECT_EQ(kinds(r), std::vector<ErrorKind>{ErrorKind::skipped_station});
+    }
 }
 
 TEST(Scorer, TooLittlePressureOnly)

@@ -67,8 +67,9 @@ TEST(IgtlLiveLink, PublishesTheImageTheGpuDrewWhereItsProbeWas)
         const gpu::Sampler nearest(ctx, gpu::Filter::nearest);
         runner::EchoImagePass pass(pipeline, panel, nearest);
         LiveFrame live;
-        pass.enable_readback(ctx, [&](const echo::EchoFrame& frame, std::span<const std::uint8_t> grey, double wall_clock_s) {
-            app::fill_live_frame(live, plane, frame, grey, wall_clock_s);
+        pass.enable_readback(ctx, [&](const echo::EchoFrame& frame, const echo::ImagePlane& drawn_in, std::span<const std::uint8_t> grey,
+                                      double wall_clock_s) {
+            app::fill_live_frame(live, drawn_in, frame, grey, wall_clock_s);
             server.publish(live);
         });
         ClearPass clear;

@@ -409,6 +409,14 @@ TEST(ScannerControls, GainAndFocusStepWithinTheirRanges)
     t = runner::adjusted(s, {.gain_steps = -100, .focus_steps = -100}, 50.0);
     EXPECT_DOUBLE_EQ(t.gain_db, -runner::kMaxGainDb);
     EXPECT_DOUBLE_EQ(t.focus_mm, runner::kFocusMarginMm);
+    // the depth: a centimetre a step, kept within the range
+    EXPECT_DOUBLE_EQ(runner::adjusted_depth(50, 1, 30, 70), 60);
+    EXPECT_DOUBLE_EQ(runner::adjusted_depth(50, -2, 30, 70), 30);
+    EXPECT_DOUBLE_EQ(runner::adjusted_depth(50, 9, 30, 70), 70);
+    EXPECT_DOUBLE_EQ(runner::adjusted_depth(50, -9, 30, 70), 30);
+    // the focus follows a shallower image into it
+    t = runner::adjusted({.focus_mm = 40}, {}, 30.0);
+    EXPECT_DOUBLE_EQ(t.focus_mm, 30.0 - runner::kFocusMarginMm);
 }
 
 // Freeze: the panel keeps the frozen image while the probe presses on (the scene shows the press),
@@ -466,6 +474,27 @@ TEST(Runner, AFrozenImageStaysWhileTheProbeMovesOn)
         long sum_brighter = 0, sum_before = 0;
         for (std::size_t i = 0; i < before.size(); ++i) sum_brighter += brighter[i], sum_before += before[i];
         EXPECT_GT(sum_brighter, sum_before) << "10 dB more gain: a brighter image";
+
+        // depth: not while frozen (the frozen image keeps its scale, and a caliper on it stays
+        // true); live, 2 cm deeper, the panel narrower for the same height, the status says so;
+        // then as shallow as it goes, the focus (40 mm) brought into the 30 mm image
+        runner::apply(*r.frame(), {.focus_steps = 8, .toggle_freeze = true});
+        runner::apply(*r.frame(), {.depth_steps = 2});
+        EXPECT_EQ(r.frame()->echo_image().plane().depth_mm, kLinearProbe.image_depth_mm);
+        runner::apply(*r.frame(), {.toggle_freeze = true});
+        runner::apply(*r.frame(), {.depth_steps = 2});
+        EXPECT_EQ(r.frame()->echo_image().plane().depth_mm, kLinearProbe.image_depth_mm + 2 * runner::kDepthStepMm);
+        EXPECT_NE(runner::scanner_status(*r.frame()).find("depth 7.0 cm"), std::string::npos) << runner::scanner_status(*r.frame());
+        ASSERT_TRUE(r.step());
+        ASSERT_TRUE(r.step());
+        const render::TargetRect deeper_rect = runner::echo_panel_rect({480, 270}, r.frame()->echo_image().plane());
+        EXPECT_LT(deeper_rect.width, panel_rect.width);
+        EXPECT_NEAR(deeper_rect.width / panel_rect.width, 50.0 / 70.0, 1e-5);
+        EXPECT_DOUBLE_EQ(r.frame()->echo_image().scanner().focus_mm, 40.0);
+        runner::apply(*r.frame(), {.depth_steps = -9});
+        EXPECT_EQ(r.frame()->echo_image().plane().depth_mm, kLinearProbe.image_depth_min_mm);
+        EXPECT_DOUBLE_EQ(r.frame()->echo_image().scanner().focus_mm, kLinearProbe.image_depth_min_mm - runner::kFocusMarginMm);
+        ASSERT_TRUE(r.step());
     }
     EXPECT_EQ(messages->load(), 0u);
 }

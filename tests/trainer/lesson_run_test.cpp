@@ -611,7 +611,7 @@ TEST(TrainerCaliperRun, TwoClicksOnTheFrozenImageMeasureTheirDistance)
         int n = 0;
         for (int dy = -8; dy <= 8; ++dy)
             for (int dx = -8; dx <= 8; ++dx) {
-                const std::uint8_t* p = &shot.pixels[(std::size_t(cy + dy) * shot.width + std::size_t(cx + dx)) * 4];
+                const std::uint8_t* p = &shot.pixels[(std::size_t(cy + float(dy)) * shot.width + std::size_t(cx + float(dx))) * 4];
                 n += p[1] > 200 && p[0] < 190 && p[2] < 140;
             }
         return n;

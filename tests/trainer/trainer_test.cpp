@@ -2,10 +2,12 @@
 // stations, the guidance's directions from the truth, the screens' keys (the kiosk's Esc), calls
 // landing on the station examined, the idle timeout scoring and storing the session.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <unistd.h>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "exam/records.hpp"
@@ -101,6 +103,46 @@ TEST(TrainerGuidance, PointsFromTheProbeToTheStationOnTheTruth)
     EXPECT_EQ(mid.find("40"), std::string::npos);
     EXPECT_EQ(trainer::guidance_text(g, trainer::guidance_level(trainer::Difficulty::expert)), "");
     EXPECT_EQ(trainer::guidance_level(trainer::Difficulty::expert).arrow_alpha, 0.0f);
+}
+
+// A large patient's common femoral vein lies deeper than the 50 mm image the scanner starts with:
+// the guidance says how deep (its far wall under the station's ideal probe, from the truth) and to
+// deepen the image, at the station and on the way; with the image 70 mm deep it says nothing of it.
+// The slim healthy case's CFV is within 50 mm: no such advice.
+TEST(TrainerGuidance, SaysToDeepenTheImageWhenTheVeinLiesBelowIt)
+{
+    const trainer::GuidanceLevel beginner = trainer::guidance_level(trainer::Difficulty::beginner);
+    const auto cfv = [](trainer::Trainer& t) -> const exam::StationTruth& {
+        t.form().lesson = exam::Protocol::two_point;
+        t.start(0);
+        return t.scorer().truth()[0];
+    };
+    trainer::Trainer large(options("large"));
+    ASSERT_TRUE(large.select_case("large-patient"));
+    const exam::StationTruth& st = cfv(large);
+    const trainer::Guidance at = trainer::guide(st.ideal_probe, st, large.lesson().bands);
+    const double far = glm::dot(st.vein.centre - glm::dvec3(st.ideal_probe.position), glm::dvec3(st.ideal_probe.axis_y())) + st.vein.radius_mm;
+    EXPECT_NEAR(at.vein_far_mm, far, 1e-6);
+    EXPECT_GT(at.vein_far_mm, 55.0);
+    EXPECT_LT(at.vein_far_mm, kLinearProbe.image_depth_max_mm);
+    const std::string text = trainer::guidance_text(at, beginner, 50.0);
+    char deep[64];
+    std::snprintf(deep, sizeof deep, "The vein lies %.0f mm deep: deepen the image (]).", at.vein_far_mm);
+    EXPECT_NE(text.find("At the station"), std::string::npos) << text;
+    EXPECT_NE(text.find(deep), std::string::npos) << text;
+    EXPECT_EQ(trainer::guidance_text(at, beginner, 70.0).find("deepen"), std::string::npos);
+    Pose below = st.ideal_probe;
+    below.position -= glm::vec3(0, 0, 40);
+    EXPECT_NE(trainer::guidance_text(trainer::guide(below, st, large.lesson().bands), beginner, 50.0).find(deep), std::string::npos);
+    EXPECT_NE(trainer::guidance_text(at, trainer::guidance_level(trainer::Difficulty::intermediate), 50.0).find("below the image: deepen it"),
+              std::string::npos);
+
+    trainer::Trainer slim(options("slim"));
+    ASSERT_TRUE(slim.select_case("healthy"));
+    const exam::StationTruth& near = cfv(slim);
+    const trainer::Guidance g = trainer::guide(near.ideal_probe, near, slim.lesson().bands);
+    EXPECT_LT(g.vein_far_mm, 50.0);
+    EXPECT_EQ(trainer::guidance_text(g, beginner, 50.0).find("deepen"), std::string::npos);
 }
 
 TEST(TrainerScreens, KeysDriveTheStartScreenAndTheKioskKeepsEsc)
