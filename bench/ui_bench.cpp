@@ -93,7 +93,7 @@ void ui_row(benchmark::State& state, const gpu::ContextOptions& gpu, const app::
         o.extent = kExtent;
         o.observers = {driver, timer};
         runner::RunnerConfig config = runner::exam_config(std::move(o));
-        config.passes.push_back(driver->pass());
+        for (runner::PassFactory& f : driver->passes()) config.passes.push_back(std::move(f));
         runner::Runner r(std::move(config));
 
         // the screen: the lesson started for the exam, and for the report ended after 3 s of it

@@ -63,7 +63,8 @@ std::string run_keys_help()
     return "Keys:\n"
            "  the trainer     start screen: type the name; F1 two-point, F2 three-point, F3 extended lesson; F4/F5 previous/next case,\n"
            "                  F6 random case; F7 difficulty; Enter starts. Exam: C compressible, N not compressible, H guidance on/off,\n"
-           "                  End finishes. Report: Enter a new lesson. Ctrl+Alt+Q quits (the only way in --kiosk)\n"
+           "                  End finishes. Report: I the stations' images or their table, Enter a new lesson. Ctrl+Alt+Q quits\n"
+           "                  (the only way in --kiosk)\n"
            "  the probe       right-drag or arrows slide it, W/S or Shift+wheel press it in and out, Q/E and A/D tilt it,\n"
            "                  R levels it, T turns it (transverse/longitudinal)\n"
            "  the scanner     ] and [ depth (30 to 70 mm, a centimetre a step), + and - gain, Page Up and Page Down focus,\n"
@@ -198,7 +199,7 @@ void TrainerWindow::configure(runner::RunnerConfig& config)
     driver_ = std::make_shared<trainer::TrainerDriver>(trainer_, d);
     if (!args_.volume.empty()) driver_->accept_any_case();
     config.observers.push_back(driver_);
-    config.passes.push_back(driver_->pass());
+    for (runner::PassFactory& f : driver_->passes()) config.passes.push_back(std::move(f));
 }
 
 void TrainerWindow::attach(runner::Runner& runner)

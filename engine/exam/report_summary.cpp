@@ -5,12 +5,13 @@
 #include <cstdio>
 #include <optional>
 
-#include "exam/report_images.hpp"
+#include "exam/station_sheet.hpp"
 #include "exam/report_svg.hpp"
 #include "exam/report_text.hpp"
 #include "exam/station_status.hpp"
 #include "io/bitmap_font.hpp"
 #include "io/plot.hpp"
+#include "io/raster.hpp"
 
 namespace echosim::exam {
 namespace {
@@ -21,50 +22,6 @@ constexpr int kThumbMaxHeight = 300;        // [px]
 constexpr std::size_t kErrorsShown = 12;    // more are counted, not listed: the HTML lists them all
 constexpr io::Rgba kInk{33, 33, 33, 255};
 constexpr io::Rgba kGrey{117, 117, 117, 255};
-
-io::Rgba parse_colour(const char* hex)  // "#rrggbb"
-{
-    const auto v = [&](int i) { return std::uint8_t(std::stoi(std::string(hex + i, 2), nullptr, 16)); };
-    return {v(1), v(3), v(5), 255};
-}
-
-void fill(io::RgbaImage& img, int x0, int y0, int w, int h, io::Rgba c)
-{
-    for (int y = std::max(0, y0); y < std::min<int>(int(img.height), y0 + h); ++y)
-        for (int x = std::max(0, x0); x < std::min<int>(int(img.width), x0 + w); ++x) io::blend_pixel(img, x, y, c);
-}
-
-// `src` into `dst` at (x0, y0), shrunk by a box filter to w x h (src is never smaller here than
-// thumbnails, and a stretched one is sampled nearest).
-void blit_scaled(io::RgbaImage& dst, const io::RgbaImage& src, int x0, int y0, int w, int h)
-{
-    if (src.width == 0 || src.height == 0 || w <= 0 || h <= 0) return;
-    for (int y = 0; y < h; ++y) {
-        const std::uint32_t sy0 = std::uint32_t(std::uint64_t(y) * src.height / std::uint32_t(h));
-        const std::uint32_t sy1 = std::max(sy0 + 1, std::uint32_t(std::uint64_t(y + 1) * src.height / std::uint32_t(h)));
-        for (int x = 0; x < w; ++x) {
-            const std::uint32_t sx0 = std::uint32_t(std::uint64_t(x) * src.width / std::uint32_t(w));
-            const std::uint32_t sx1 = std::max(sx0 + 1, std::uint32_t(std::uint64_t(x + 1) * src.width / std::uint32_t(w)));
-            double sum[4] = {0, 0, 0, 0};
-            for (std::uint32_t sy = sy0; sy < sy1; ++sy)
-                for (std::uint32_t sx = sx0; sx < sx1; ++sx)
-                    for (int k = 0; k < 4; ++k) sum[k] += src.at(sx, sy)[k];
-            const double n = double((sy1 - sy0) * (sx1 - sx0));
-            const io::Rgba c{std::uint8_t(sum[0] / n + 0.5), std::uint8_t(sum[1] / n + 0.5), std::uint8_t(sum[2] / n + 0.5),
-                             std::uint8_t(sum[3] / n + 0.5)};
-            io::blend_pixel(dst, x0 + x, y0 + y, c);
-        }
-    }
-}
-
-// `text` cut to `width` pixels at `scale`, with "..." when cut.
-std::string fit(const std::string& text, int width, int scale)
-{
-    if (io::text_width(text, scale) <= width) return text;
-    std::string cut = text;
-    while (!cut.empty() && io::text_width(cut + "...", scale) > width) cut.pop_back();
-    return cut + "...";
-}
 
 // `text` broken at spaces into lines of at most `width` pixels.
 std::vector<std::string> wrap(const std::string& text, int width, int scale)
@@ -85,7 +42,7 @@ std::vector<std::string> wrap(const std::string& text, int width, int scale)
         i = end + 1;
     }
     if (!line.empty()) lines.push_back(line);
-    for (std::string& l : lines) l = fit(l, width, scale);
+    for (std::string& l : lines) l = io::fit_text(l, width, scale);
     return lines;
 }
 
@@ -137,35 +94,18 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
     const int W = int(kSummaryWidth), text_w = W - 2 * kMargin;
     const io::RgbaImage plot = io::render_plot(force_plot(r), std::uint32_t(text_w), 400);
 
-    // the thumbnails first: their count and sizes set the page's height
-    struct Thumb {
-        std::string caption;
-        std::optional<io::RgbaImage> image;
-        std::string why;
-    };
-    std::vector<Thumb> thumbs;
-    for (std::size_t i = 0; i < r.stations.size(); ++i) {
-        const StationResult& s = r.stations[i];
-        if (s.image_png.empty()) continue;
-        Thumb t{s.name + ": ratio " + fixed(s.collapse_ratio, 2) + ", " + fixed(s.peak_force_N, 1) + " N", std::nullopt, ""};
-        const StationImage file = read_station_image(dir, s.image_png);
-        if (file.png.empty()) {
-            t.why = file.why;
-        } else {
-            try {
-                t.image = io::read_png(station_image_path(dir, s.image_png));
-            } catch (const std::exception&) {
-                t.why = "not a readable PNG";
-            }
-        }
-        thumbs.push_back(std::move(t));
-    }
-    const int per_row = (text_w + 16) / (kThumbWidth + 16);
-    const int thumb_rows = int((thumbs.size() + std::size_t(per_row) - 1) / std::size_t(per_row));
+    // the thumbnails first: their sheet's height sets the page's
+    SheetStyle sheet_style;
+    sheet_style.width = text_w;
+    sheet_style.thumb_width = kThumbWidth;
+    sheet_style.thumb_max_height = kThumbMaxHeight;
+    sheet_style.ink = kInk;
+    sheet_style.muted = kGrey;
+    const io::RgbaImage sheet = station_sheet(r, dir, sheet_style);
     const int line = 22;  // [px] a row of scale-2 text
     const std::size_t errors_listed = std::min(r.errors.size(), kErrorsShown);
     const int height = 250 + 410 + int(r.stations.size() + 3) * line + int(errors_listed + 4) * line + 3 * line +
-                       thumb_rows * (kThumbMaxHeight + 40) + 40;
+                       int(sheet.height) + 40;
 
     io::RgbaImage img;
     img.width = std::uint32_t(W);
@@ -174,17 +114,17 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
     int y = kMargin;
 
     // the heading and the verdict
-    io::draw_text(img, kMargin, y, fit("Exam report: " + r.case_title, text_w, 4), 4, kInk);
+    io::draw_text(img, kMargin, y, io::fit_text("Exam report: " + r.case_title, text_w, 4), 4, kInk);
     y += 44;
     std::string facts = "Trainee: " + (r.trainee.empty() ? std::string("(unnamed)") : r.trainee) + "   Case: " + r.case_id +
                         "   Protocol: " + r.protocol;
     if (!r.started_utc.empty()) facts += "   Started: " + r.started_utc;
-    io::draw_text(img, kMargin, y, fit(facts, text_w, 2), 2, kInk);
+    io::draw_text(img, kMargin, y, io::fit_text(facts, text_w, 2), 2, kInk);
     y += 32;
     const io::Rgba verdict_colour = r.passed ? io::Rgba{27, 94, 32, 255} : io::Rgba{183, 28, 28, 255};
     const std::string verdict = "Score " + fixed(100 * r.score, 0) + " % (pass mark " + fixed(100 * r.pass_mark, 0) +
                                 " %): " + (r.passed ? "PASSED" : "NOT PASSED");
-    fill(img, kMargin - 6, y - 6, io::text_width(verdict, 3) + 12, io::text_height(3) + 12,
+    io::fill_rect(img, kMargin - 6, y - 6, io::text_width(verdict, 3) + 12, io::text_height(3) + 12,
          r.passed ? io::Rgba{232, 245, 233, 255} : io::Rgba{255, 235, 238, 255});
     io::draw_text(img, kMargin, y, verdict, 3, verdict_colour);
     y += 40;
@@ -196,7 +136,7 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
     y += line + 12;
 
     // the force
-    blit_scaled(img, plot, kMargin, y, int(plot.width), int(plot.height));
+    io::blit_scaled(img, plot, kMargin, y, int(plot.width), int(plot.height));
     y += int(plot.height) + 10;
 
     // the stations
@@ -209,13 +149,13 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
         const StationStatus status = station_status(r, i);
         // a station never reached has no press to measure
         const auto measured = [&](double v, int decimals) { return s.reached ? fixed(v, decimals) : std::string("-"); };
-        fill(img, kMargin, y + 1, 12, 12, parse_colour(status_colour(status)));
+        io::fill_rect(img, kMargin, y + 1, 12, 12, status_rgba(status));
         const std::string row = format("%-3zu %-16.16s %-9.9s %6s  %-8s %7s %6s %9s %10s %-9s %-16s %-5s", i + 1, s.name.c_str(),
                                        s.segment.c_str(), fixed(s.s_cm, 1).c_str(), station_status_name(status), measured(s.offset_mm, 1).c_str(),
                                        measured(s.angle_deg, 1).c_str(), measured(s.peak_force_N, 1).c_str(), measured(s.collapse_ratio, 2).c_str(),
                                        s.thrombosed ? "thrombus" : "patent", call_name(s.call),
                                        s.call == Call::none ? "-" : s.call_correct ? "right" : "wrong");
-        io::draw_text(img, kMargin + 20, y, fit(row, text_w - 20, 2), 2, kInk);
+        io::draw_text(img, kMargin + 20, y, io::fit_text(row, text_w - 20, 2), 2, kInk);
         y += line;
     }
     y += 10;
@@ -227,7 +167,7 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
         const FlaggedError& e = r.errors[i];
         const std::string text = format("%6s s  %-20s %-14s ", fixed(e.time_s, 1).c_str(), error_name(e.kind),
                                         e.station.empty() ? "(exam)" : e.station.c_str()) + e.detail;
-        io::draw_text(img, kMargin + 20, y, fit(text, text_w - 20, 2), 2, io::Rgba{183, 28, 28, 255});
+        io::draw_text(img, kMargin + 20, y, io::fit_text(text, text_w - 20, 2), 2, io::Rgba{183, 28, 28, 255});
         y += line;
     }
     if (r.errors.size() > errors_listed) {
@@ -238,31 +178,18 @@ io::RgbaImage report_summary(const ExamReport& r, const std::filesystem::path& d
     const std::string motion = "Motion: " + fixed(r.motion.duration_s, 1) + " s, probe path " + fixed(r.motion.path_mm / 10, 1) +
                                " cm, angle from transverse mean " + fixed(r.motion.mean_angle_deg, 1) + " deg, largest " +
                                fixed(r.motion.max_angle_deg, 1) + " deg";
-    io::draw_text(img, kMargin, y, fit(motion, text_w, 2), 2, kInk);
+    io::draw_text(img, kMargin, y, io::fit_text(motion, text_w, 2), 2, kInk);
     y += line;
     const std::string osaus = "OSAUS (1-5): systematic examination " + fixed(r.osaus.systematic_examination, 1) + ", interpretation " +
                               fixed(r.osaus.interpretation, 1) + ", decision " + fixed(r.osaus.decision, 1);
-    io::draw_text(img, kMargin, y, fit(osaus, text_w, 2), 2, kInk);
+    io::draw_text(img, kMargin, y, io::fit_text(osaus, text_w, 2), 2, kInk);
     y += line + 16;
 
     // the images at the deepest press
-    for (std::size_t k = 0; k < thumbs.size(); ++k) {
-        const int col = int(k % std::size_t(per_row));
-        const int row_y = y + int(k / std::size_t(per_row)) * (kThumbMaxHeight + 40);
-        const int x = kMargin + col * (kThumbWidth + 16);
-        const Thumb& t = thumbs[k];
-        int h = 60;
-        if (t.image && t.image->width > 0) {
-            h = std::min(kThumbMaxHeight, int(std::lround(double(kThumbWidth) * t.image->height / t.image->width)));
-            const int w = std::min(kThumbWidth, int(std::lround(double(h) * t.image->width / std::max(1u, t.image->height))));
-            blit_scaled(img, *t.image, x, row_y, w, h);
-        } else {
-            fill(img, x, row_y, kThumbWidth, h, io::Rgba{238, 238, 238, 255});
-            io::draw_text(img, x + 6, row_y + 22, fit(t.why, kThumbWidth - 12, 1), 1, kGrey);
-        }
-        io::draw_text(img, x, row_y + h + 6, fit(t.caption, kThumbWidth, 2), 2, kInk);
+    if (sheet.height > 0) {
+        io::blit_scaled(img, sheet, kMargin, y, int(sheet.width), int(sheet.height));
+        y += int(sheet.height) + 16;
     }
-    if (!thumbs.empty()) y += thumb_rows * (kThumbMaxHeight + 40);
 
     // the page ends under its content
     img.height = std::uint32_t(std::min(height, y + kMargin));

@@ -57,6 +57,13 @@ const char* status_colour(StationStatus s)
     return "#000000";
 }
 
+io::Rgba status_rgba(StationStatus s)
+{
+    const char* hex = status_colour(s);
+    const auto v = [&](int i) { return std::uint8_t(std::stoi(std::string(hex + i, 2), nullptr, 16)); };
+    return {v(1), v(3), v(5), 255};
+}
+
 std::string force_trace_svg(const ExamReport& report, int width, int height)
 {
     const double left = 56, right = 16, top = 16, bottom = 40;

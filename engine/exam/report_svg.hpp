@@ -8,11 +8,14 @@
 
 #include "exam/exam_report.hpp"
 #include "exam/station_status.hpp"
+#include "io/bitmap_font.hpp"
 
 namespace echosim::exam {
 
-// The colour each station status is drawn in, shared by both drawings, the table and the PNG summary.
+// The colour each station status is drawn in, shared by both drawings, the table and the PNG summary
+// ("#rrggbb"), and the same as bytes for the pictures drawn on the CPU.
 const char* status_colour(StationStatus s);
+io::Rgba status_rgba(StationStatus s);
 
 // An <svg> element, width x height in CSS pixels.
 std::string force_trace_svg(const ExamReport& report, int width = 960, int height = 320);

@@ -176,6 +176,7 @@ void Trainer::new_lesson()
 {
     screen_ = Screen::start;
     message_.clear();
+    report_images_ = false;
 }
 
 Action Trainer::keys(const ui::UiInput& in, double time_s, bool text_active)
@@ -211,6 +212,7 @@ Action Trainer::keys(const ui::UiInput& in, double time_s, bool text_active)
         }
         return Action::none;
     case Screen::report:
+        if (in.was_pressed(ui::letter('i'))) toggle_report_images();
         if (in.was_pressed(Key::enter)) new_lesson();
         return Action::none;
     }

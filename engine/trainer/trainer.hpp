@@ -110,6 +110,10 @@ public:
     std::int64_t stored_id() const { return stored_id_; }  // 0: not stored
     const std::vector<exam::SessionRecord>& earlier() const { return earlier_; }
     void new_lesson();  // back to the start screen, the form kept
+    // Whether the report screen shows the stations' images at their deepest press in place of
+    // its station table (the I key, or its button); a new lesson's report opens on the table.
+    bool report_images_shown() const { return report_images_; }
+    void toggle_report_images() { report_images_ = !report_images_; }
     const std::string& last_error() const { return error_; }
     const std::string& message() const { return message_; }  // a line for the start screen
 
@@ -119,7 +123,7 @@ public:
     //   start:  Enter start; F1 two-point, F2 three-point, F3 extended; F4 / F5 previous / next case,
     //           F6 random case; F7 difficulty (beginner, intermediate, expert in turn)
     //   exam:   C compressible, N not compressible, End finish, H guidance on or off
-    //   report: Enter a new lesson
+    //   report: Enter a new lesson, I the stations' images or their table
     //   any:    Ctrl+Alt+Q quit (the instructor's); Esc quits unless in the kiosk
     Action keys(const ui::UiInput& in, double time_s, bool text_active);
     // Counts the input and the probe's motion as activity; applies the idle timeout at `time_s`.
@@ -149,6 +153,7 @@ private:
     std::vector<exam::SessionRecord> earlier_;
     std::string error_, message_;
     bool guidance_on_ = true;
+    bool report_images_ = false;
     double last_active_s_ = 0;
     Pose last_pose_;
 };

@@ -25,7 +25,16 @@ void TrainerDriver::make_reports(echo::Imaging imaging)
         });
 }
 
-runner::PassFactory TrainerDriver::pass()
+std::vector<runner::PassFactory> TrainerDriver::passes()
+{
+    return {ui_pass(), {runner::PassPlace::overlay, [this](const runner::PassSetup& setup) {
+                            auto p = std::make_unique<StationSheetPass>(setup.commands, setup.format);
+                            sheet_ = p.get();
+                            return p;
+                        }}};
+}
+
+runner::PassFactory TrainerDriver::ui_pass()
 {
     return {runner::PassPlace::overlay, [this](const runner::PassSetup& setup) {
                 ui::UiOptions o = options_.ui;
@@ -36,6 +45,7 @@ runner::PassFactory TrainerDriver::pass()
                     act(draw_trainer(*trainer_, view, plane, extent, ui_->fonts(), ui_->scale(), screens_));
                     if (trainer_->screen() == Screen::exam) draw_scanner_marks(image_panel(extent, plane), ui_->fonts(), ui_->scale());
                     update_caliper(extent);
+                    if (sheet_) sheet_->set(trainer_->report(), trainer_->report_dir(), screens_.sheet_area, extent, ui_->scale());
                 });
                 ui_ = p.get();
                 return p;

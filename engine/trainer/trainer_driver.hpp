@@ -20,6 +20,7 @@
 #include "io/png.hpp"
 #include "runner/runner.hpp"
 #include "trainer/trainer.hpp"
+#include "trainer/station_sheet_pass.hpp"
 #include "trainer/trainer_screens.hpp"
 #include "ui/ui_pass.hpp"
 
@@ -40,8 +41,9 @@ class TrainerDriver final : public runner::Observer {
 public:
     TrainerDriver(std::shared_ptr<Trainer> trainer, DriverOptions options);
 
-    // The UI pass for the runner's configuration (PassPlace::overlay).
-    runner::PassFactory pass();
+    // The runner configuration's passes, in this order (PassPlace::overlay): the UI pass, then the
+    // report screen's station images over it (trainer/station_sheet_pass.hpp).
+    std::vector<runner::PassFactory> passes();
     ui::UiPass* ui() { return ui_; }
     Trainer& trainer() { return *trainer_; }
 
@@ -78,7 +80,9 @@ private:
 
     std::shared_ptr<Trainer> trainer_;
     DriverOptions options_;
+    runner::PassFactory ui_pass();
     ui::UiPass* ui_ = nullptr;
+    StationSheetPass* sheet_ = nullptr;
     runner::Runner* runner_ = nullptr;
     // the trainer's report maker: the stations' images made with `imaging`
     void make_reports(echo::Imaging imaging);

@@ -400,7 +400,17 @@ Action report_screen(Trainer& t, VkExtent2D extent, const ui::UiFonts& fonts, fl
     if (!t.last_error().empty()) ImGui::TextColored(kRed, "%s", t.last_error().c_str());
 
     const float table_h = h * 0.38f;
-    if (ImGui::BeginTable("stations", 7, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, table_h))) {
+    // the station table, or in its place the stations' images at their deepest press
+    const bool images = t.report_images_shown();
+    const bool toggle = ImGui::Button(images ? "Station table  (I)" : "Station images  (I)");
+    remember(state, "station-images");
+    if (toggle) t.toggle_report_images();
+    if (images) {
+        const ImVec2 at = ImGui::GetCursorScreenPos();
+        const float area_w = ImGui::GetContentRegionAvail().x;
+        ImGui::Dummy(ImVec2(area_w, table_h));
+        state.sheet_area = ScreenState::Rect{at.x, at.y, at.x + area_w, at.y + table_h};
+    } else if (ImGui::BeginTable("stations", 7, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY, ImVec2(0, table_h))) {
         ImGui::TableSetupScrollFreeze(0, 1);
         for (const char* c : {"Station", "Reached", "Peak force", "Vein closed to", "Truth", "Call", ""}) ImGui::TableSetupColumn(c);
         ImGui::TableHeadersRow();
@@ -470,6 +480,7 @@ Action draw_trainer(Trainer& trainer, const session::SessionView& view, const ec
 {
     const Screen shown = trainer.screen();
     if (shown != state.last) state.hotspots.clear();
+    state.sheet_area.reset();
     Action a = Action::none;
     switch (shown) {
     case Screen::start: a = start_screen(trainer, view, extent, fonts, scale, state); break;

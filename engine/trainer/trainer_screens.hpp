@@ -7,11 +7,14 @@
 //           done / pending / wrong, the probe's place, the arrow to the next), the turn dial, the
 //           force gauge (the live force, the patient's adequate band, the excessive limit), the
 //           call buttons and Finish.
-//   report: score against the pass mark and the conclusion, the station table, the errors flagged,
-//           the report's folder, the trainee's earlier sessions from the records, New lesson.
+//   report: score against the pass mark and the conclusion, the station table or the stations'
+//           images at their deepest press (I; the images drawn by StationSheetPass in the area the
+//           screen leaves for them), the errors flagged, the force over the exam, the report's
+//           folder, the trainee's earlier sessions from the records, New lesson.
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -35,6 +38,9 @@ struct ScreenState {
         float cy() const { return 0.5f * (y0 + y1); }
     };
     std::map<std::string, Rect> hotspots;
+    // where the report screen left room for the stations' images [px] (StationSheetPass draws
+    // them there), this frame; none when it shows the table or another screen
+    std::optional<Rect> sheet_area;
 };
 
 // Draws the trainer's current screen into a frame of `extent` (ImGui's context current), the

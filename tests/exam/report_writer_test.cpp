@@ -2,6 +2,7 @@
 // report.html self-contained with every injected string escaped and the images embedded, and
 // summary.png carrying the stations' images.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <filesystem>
 #include <string>
@@ -13,6 +14,8 @@
 #include "exam/report_json.hpp"
 #include "exam/report_text.hpp"
 #include "exam/report_writer.hpp"
+#include "exam/report_svg.hpp"
+#include "exam/station_sheet.hpp"
 #include "exam/station_status.hpp"
 #include "io/png.hpp"
 #include "report_fixture.hpp"
@@ -263,6 +266,67 @@ TEST(ReportWriter, SummaryPngShowsTheStationImages)
     EXPECT_GT(count(255, 0, 255), 6000u);
     EXPECT_GT(count(0, 255, 255), 6000u);
     EXPECT_GT(count(255, 255, 0), 6000u);
+    std::filesystem::remove_all(dir);
+}
+
+// The sheet of station images as the trainer's report screen asks for it: into a 600 x 200 area,
+// the three images of make_report (160 x 120, solid magenta, cyan, yellow; the station without an
+// image left out) in one row, each as wide as a third of the area allows, its aspect kept, framed in its station's status colour (CFV and FV 6 cm covered, green; the SFJ
+// pressed too little, red).
+TEST(StationSheet, FitsItsAreaAndFramesEachStationInItsStatus)
+{
+    const ExamReport r = make_report();
+    const auto dir = fresh_dir("sheet");
+    write_station_images(dir);
+    SheetStyle style;
+    style.width = 600;
+    style.max_height = 200;
+    style.thumb_width = 400;
+    style.caption_scale = 1;
+    style.status_frames = true;
+    const io::RgbaImage sheet = station_sheet(r, dir, style);
+    ASSERT_EQ(sheet.width, 600u);
+    ASSERT_GT(sheet.height, 0u);
+    EXPECT_LE(sheet.height, 200u);
+    // each colour's block: its bounding box, its pixels all of it
+    const auto block_in = [](const io::RgbaImage& img, std::uint8_t cr, std::uint8_t cg, std::uint8_t cb) {
+        std::uint32_t x0 = img.width, y0 = img.height, x1 = 0, y1 = 0, n = 0;
+        for (std::uint32_t y = 0; y < img.height; ++y)
+            for (std::uint32_t x = 0; x < img.width; ++x)
+                if (const std::uint8_t* p = img.at(x, y); p[0] == cr && p[1] == cg && p[2] == cb) {
+                    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + 1), y1 = std::max(y1, y + 1), ++n;
+                }
+        return std::array<std::uint32_t, 5>{x0, y0, x1, y1, n};
+    };
+    const auto block = [&](std::uint8_t cr, std::uint8_t cg, std::uint8_t cb) { return block_in(sheet, cr, cg, cb); };
+    const auto magenta = block(255, 0, 255), cyan = block(0, 255, 255), yellow = block(255, 255, 0);
+    for (const auto& b : {magenta, cyan, yellow}) {
+        const std::uint32_t w = b[2] - b[0], h = b[3] - b[1];
+        EXPECT_EQ(b[4], w * h) << "a solid block";
+        EXPECT_NEAR(double(w) / h, 160.0 / 120.0, 0.02);
+        // as large as fits: three abreast in 600 px less two 16 px gaps and the 3 px frames
+        // (187 px; 140 tall, within the 200 px less a caption)
+        EXPECT_GE(w, 186u);
+        EXPECT_LE(w, 188u);
+        EXPECT_EQ(b[1], magenta[1]) << "one row";
+    }
+    EXPECT_LT(magenta[2], cyan[0]);
+    EXPECT_LT(cyan[2], yellow[0]);
+    // the frames: green round the CFV's and FV 6 cm's, red round the SFJ's
+    const io::Rgba green = status_rgba(StationStatus::covered), red = status_rgba(StationStatus::wrong);
+    const auto at = [&](std::uint32_t x, std::uint32_t y, io::Rgba c) {
+        const std::uint8_t* p = sheet.at(x, y);
+        return p[0] == c.r && p[1] == c.g && p[2] == c.b;
+    };
+    EXPECT_TRUE(at(magenta[0] - 1, magenta[1] + 10, green));
+    EXPECT_TRUE(at(cyan[0] - 1, cyan[1] + 10, red));
+    EXPECT_TRUE(at(yellow[2], yellow[1] + 10, green));
+    // no area: as the PNG summary lays them, 296 px wide (five a row), as tall as their aspect makes them
+    const io::RgbaImage page = station_sheet(r, dir, SheetStyle{});
+    EXPECT_EQ(page.width, std::uint32_t(SheetStyle{}.width));
+    const auto wide = block_in(page, 255, 0, 255);
+    EXPECT_EQ(wide[2] - wide[0], 296u);
+    EXPECT_EQ(wide[3] - wide[1], 222u);  // 296 x 120 / 160
     std::filesystem::remove_all(dir);
 }
 

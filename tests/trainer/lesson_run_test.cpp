@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -28,6 +29,8 @@
 #include "exam/course_truth.hpp"
 #include "exam/records.hpp"
 #include "exam/scenario.hpp"
+#include "exam/station_sheet.hpp"
+#include "exam/report_fixture.hpp"
 #include "io/png.hpp"
 #include "render/image_compare.hpp"
 #include "runner/exam_config.hpp"
@@ -211,7 +214,7 @@ TEST(TrainerLessonRun, DISABLED_AWholeLessonByInjectedInputScoresAsTheSameScript
         o.observers.push_back(driver);
         o.input = hands;
         runner::RunnerConfig config = runner::exam_config(std::move(o));
-        config.passes.push_back(driver->pass());
+        for (runner::PassFactory& f : driver->passes()) config.passes.push_back(std::move(f));
         runner::Runner r(std::move(config));
         const auto counter = r.validation_counter();
         r.run();
@@ -316,7 +319,7 @@ runner::RunnerConfig small_trainer_config(const SmallVolume& v, std::shared_ptr<
     o.observers.push_back(driver);
     o.input = std::move(input);
     runner::RunnerConfig config = runner::exam_config(std::move(o));
-    config.passes.push_back(driver->pass());
+    for (runner::PassFactory& f : driver->passes()) config.passes.push_back(std::move(f));
     return config;
 }
 
@@ -552,6 +555,68 @@ TEST(TrainerReportScreen, ALessonLeftAtOnceFlagsEveryStationAndTheReportStillOff
     EXPECT_GT(again.y0, 0.0f);
     EXPECT_LT(again.y1, float(kExtent.height));
     io::write_png(std::filesystem::path(testing::TempDir()) / "trainer_report_errors.png", shot);
+}
+
+// The report screen's station images (I), as a trainee looks at them: the sheet of the stations'
+// images at their deepest press is drawn in the area the screen leaves in place of the table, one
+// texel a pixel: the frame's pixels there are the sheet's, as exam::station_sheet makes it for that
+// area (the stations' images here are stand-ins, one solid colour each, written by a report maker of
+// the test's); I again shows the table, and the area is gone.
+TEST(TrainerReportScreen, TheStationImagesShowInPlaceOfTheTable)
+{
+    const std::filesystem::path dir = temp("trainer_report_images");
+    auto t = std::make_shared<trainer::Trainer>(kiosk_options(dir));
+    t->form().lesson = exam::Protocol::three_point;
+    const SmallVolume v = small_volume();
+    auto driver = std::make_shared<trainer::TrainerDriver>(
+        t, trainer::DriverOptions{.frame_every_steps = 1, .loaded_case = "healthy", .volume = v.grey, .labels = v.labels});
+    auto input = std::make_shared<KeysAt>();
+    input->driver = driver;
+    input->at = {{2, press(ui::Key::enter)}, {4, press(ui::Key::end)}, {6, press(ui::letter('i'))}, {12, press(ui::letter('i'))}};
+    runner::RunnerConfig config = small_trainer_config(v, driver, input, 15 / 60.0, kExtent);
+    io::RgbaImage shot;
+    std::optional<trainer::ScreenState::Rect> area, area_after;
+    std::uint32_t messages = 0;
+    {
+        runner::Runner r(std::move(config));
+        const auto counter = r.validation_counter();
+        t->set_report_maker([](const exam::Scorer& scorer, const std::filesystem::path& out, const std::string& trainee) {
+            std::vector<std::string> images;
+            for (std::size_t i = 0; i < scorer.truth().size(); ++i) {
+                images.push_back("stations/" + std::to_string(i) + ".png");
+                const std::uint8_t c = std::uint8_t(60 + 60 * i);
+                exam::test::write_solid_png(out / images.back(), c, std::uint8_t(255 - c), 128, 400, 500);
+            }
+            exam::ExamReport report = scorer.finish(std::vector<std::optional<exam::Compression>>(scorer.truth().size()), images);
+            report.trainee = trainee;
+            return report;
+        });
+        while (r.step()) {
+            if (r.steps() == 9) driver->capture([&](const io::RgbaImage& im) { shot = im; });
+            if (r.steps() == 10) area = driver->screens().sheet_area;
+        }
+        area_after = driver->screens().sheet_area;
+        r.finish();
+        messages = counter->load();
+    }
+    EXPECT_EQ(messages, 0u);
+    ASSERT_EQ(t->screen(), trainer::Screen::report);
+    ASSERT_TRUE(area) << "no room left for the images after I";
+    EXPECT_FALSE(area_after) << "I again: the table, no images";
+    EXPECT_FALSE(t->report_images_shown());
+    io::write_png(std::filesystem::path(testing::TempDir()) / "trainer_report_images.png", shot);
+    const int w = int(std::floor(area->x1 - area->x0)), h = int(std::floor(area->y1 - area->y0));
+    const io::RgbaImage sheet = exam::station_sheet(t->report(), t->report_dir(), trainer::screen_sheet_style(w, h));
+    ASSERT_GT(sheet.height, 0u);
+    ASSERT_EQ(shot.width, kExtent.width);
+    const auto x0 = std::uint32_t(std::lround(area->x0)), y0 = std::uint32_t(std::lround(area->y0));
+    ASSERT_LE(x0 + sheet.width, shot.width);
+    ASSERT_LE(y0 + sheet.height, shot.height);
+    std::size_t differ = 0;
+    for (std::uint32_t y = 0; y < sheet.height; ++y)
+        for (std::uint32_t x = 0; x < sheet.width; ++x)
+            differ += std::memcmp(sheet.at(x, y), shot.at(x0 + x, y0 + y), 3) != 0;
+    EXPECT_EQ(differ, 0u) << "of " << sheet.width * sheet.height << " pixels";
 }
 
 }  // namespace
