@@ -43,7 +43,8 @@ runner::PassFactory TrainerDriver::ui_pass()
                 p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
                     const echo::ImagePlane plane = image_plane();
                     act(draw_trainer(*trainer_, view, plane, extent, ui_->fonts(), ui_->scale(), screens_));
-                    if (trainer_->screen() == Screen::exam) draw_scanner_marks(image_panel(extent, plane), ui_->fonts(), ui_->scale());
+                    if (runner::SimulatorFrame* frame = runner_ ? runner_->frame() : nullptr; frame && trainer_->screen() == Screen::exam)
+                        draw_scanner_marks(image_panel(extent, plane), frame->echo_image().scanner(), ui_->fonts(), ui_->scale());
                     update_caliper(extent);
                     if (sheet_) sheet_->set(trainer_->report(), trainer_->report_dir(), screens_.sheet_area, extent, ui_->scale());
                 });

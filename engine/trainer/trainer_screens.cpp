@@ -532,7 +532,7 @@ void draw_caliper(const Caliper& caliper, const ImagePanel& panel, const ui::UiF
     ImGui::PopFont();
 }
 
-void draw_scanner_marks(const ImagePanel& panel, const ui::UiFonts& fonts, float scale)
+void draw_scanner_marks(const ImagePanel& panel, const echo::ScannerSettings& scanner, const ui::UiFonts& fonts, float scale)
 {
     if (!(panel.depth_mm > 0) || panel.height <= 0) return;
     ImDrawList* dl = ImGui::GetForegroundDrawList();
@@ -553,6 +553,10 @@ void draw_scanner_marks(const ImagePanel& panel, const ui::UiFonts& fonts, float
     std::snprintf(text, sizeof text, "%.1f cm", panel.depth_mm / 10);
     const ImVec2 size = ImGui::CalcTextSize(text);
     label(ImVec2(panel.x + panel.width - size.x - 6 * scale, panel.y + panel.height - size.y - 4 * scale), text);
+    char settings[64];
+    std::snprintf(settings, sizeof settings, "gain %+.0f dB   focus %.1f cm", scanner.gain_db, scanner.focus_mm / 10);
+    const ImVec2 settings_size = ImGui::CalcTextSize(settings);
+    label(ImVec2(panel.x + panel.width - settings_size.x - 6 * scale, panel.y + 4 * scale), settings);
     ImGui::PopFont();
     // the orientation marker: the probe's marker colour, ringed dark, clear of the ticks and labels
     const float r = 6 * scale;

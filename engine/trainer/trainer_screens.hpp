@@ -57,9 +57,11 @@ void draw_caliper(const Caliper& caliper, const ImagePanel& panel, const ui::UiF
 // Draws the scanner's marks over the image (ImGui's context current, inside the draw callback), as
 // a scanner's screen shows them: each centimetre's tick (the post stage's major ticks,
 // compute/post_bindings.h) numbered in cm beside it, the image's whole depth at its bottom right
-// ("7.0 cm"), and the orientation marker at its top left: the image's left is the side of the
+// ("7.0 cm"), the orientation marker at its top left: the image's left is the side of the
 // probe's marker (probe -x; scene::make_linear_probe colours it kMarkerColour), which the exam
-// keeps towards the patient's right (echo::Phantom::transverse_probe_pose).
-void draw_scanner_marks(const ImagePanel& panel, const ui::UiFonts& fonts, float scale);
+// keeps towards the patient's right (echo::Phantom::transverse_probe_pose); and the scanner's
+// settings at its top right ("gain +4 dB  focus 2.0 cm"), which a fullscreen kiosk has no title
+// bar to show.
+void draw_scanner_marks(const ImagePanel& panel, const echo::ScannerSettings& scanner, const ui::UiFonts& fonts, float scale);
 
 }  // namespace echosim::trainer
