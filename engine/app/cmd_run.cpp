@@ -261,7 +261,9 @@ int run_window(const RunArgs& args)
     const std::shared_ptr<LiveLink> live = link ? std::make_shared<LiveLink>(*link, "echosim run: ") : nullptr;
     std::uint32_t swapchains = 0, validation = 0;
     // one runner a case: a lesson started on another case ends it, and the run goes on with a
-    // runner holding that case's volumes (app/trainer_window.hpp)
+    // runner holding that case's volumes (app/trainer_window.hpp), in the same window (a kiosk's
+    // stays fullscreen: the desk behind it never shows)
+    std::shared_ptr<gpu::Window> window;
     for (bool again = true; again;) {
         runner::RunnerConfig config;
         config.name = "run";
@@ -283,7 +285,9 @@ int run_window(const RunArgs& args)
             config.passes.push_back(runner::guide_pass_factory(runner::course_guides(scene::LegModel{}, trainer->case_to_load().anatomy), guides));
         std::shared_ptr<const std::atomic<std::uint32_t>> messages;
         {
+            config.shared_window = window;
             runner::Runner runner(std::move(config));
+            window = runner.shared_window();
             messages = runner.validation_counter();
             trainer->attach(runner);
             session::Session& session = runner.session();

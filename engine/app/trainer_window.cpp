@@ -78,8 +78,11 @@ UiWindowInput::UiWindowInput(GLFWwindow* window) : window_(window)
     if (g_char_target) throw std::logic_error("the UI's window input: one at a time");
     g_char_target = this;
     glfwSetCharCallback(window_, &UiWindowInput::on_char);
-    // a click between two polls still reads as pressed once
+    // a click or a key tapped between two polls still reads as pressed once: a frame on lavapipe at
+    // 4K takes longer than a quick tap of F5 (a tap sent by xdotool, press and release at once, was
+    // lost at 60 frames/s)
     glfwSetInputMode(window_, GLFW_STICKY_MOUSE_BUTTONS, GLFW_TRUE);
+    glfwSetInputMode(window_, GLFW_STICKY_KEYS, GLFW_TRUE);
 }
 
 UiWindowInput::~UiWindowInput()

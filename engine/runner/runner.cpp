@@ -21,6 +21,7 @@ void checked(const RunnerConfig& c)
     if (c.output != Output::none && c.imaging == echo::Imaging::generative && !c.labels)
         throw std::invalid_argument(who + "imaging: generative imaging synthesises the image from the tissue labels, and none are given");
     if (c.output == Output::none && !c.passes.empty()) throw std::invalid_argument(who + "passes: given, but there is no frame (output none)");
+    if (c.output != Output::window && c.shared_window) throw std::invalid_argument(who + "shared_window: given, but the output is not a window");
     for (const auto& o : c.observers)
         if (!o) throw std::invalid_argument(who + "observers: one is null");
 }
@@ -32,7 +33,7 @@ Runner::Runner(RunnerConfig config) : config_((checked(config), std::move(config
     if (config_.output != Output::none) {
         gpu::ContextOptions options = config_.gpu;
         if (config_.output == Output::window) {
-            window_ = std::make_unique<gpu::Window>(config_.window);
+            window_ = config_.shared_window ? config_.shared_window : std::make_shared<gpu::Window>(config_.window);
             options.instance_extensions = gpu::Window::required_instance_extensions();
             options.can_present = &gpu::Window::can_present;
         }

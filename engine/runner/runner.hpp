@@ -136,6 +136,10 @@ struct RunnerConfig {
     gpu::ContextOptions gpu;             // with a window, its instance extensions are added
     VkExtent2D extent{1280, 720};        // offscreen
     gpu::WindowOptions window;           // a window's
+    // a window made before, taken instead of making one from `window` (Output::window): one
+    // window for a run's runners, so a kiosk's fullscreen window stays up while it changes case
+    // (main thread, as every window); null: the runner makes its own
+    std::shared_ptr<gpu::Window> shared_window;
     // the echographic volume and its labels (null: none, the paper's linear deformation); needed
     // for any output
     std::shared_ptr<const io::Volume> volume, labels;
@@ -192,6 +196,8 @@ public:
     Presenter* presenter() { return presenter_.get(); }
     WindowOutput* window_output() { return window_output_; }
     gpu::Window* window() { return window_.get(); }
+    // the window, to hand on to the next runner (RunnerConfig::shared_window)
+    std::shared_ptr<gpu::Window> shared_window() const { return window_; }
     SimulatorFrame* frame() { return frame_.get(); }
     // how the frame's echographic image is made (RunnerConfig::imaging, resolved); with no frame,
     // the configuration's, or interpolative
@@ -207,7 +213,7 @@ private:
     double next_dt();
 
     RunnerConfig config_;
-    std::unique_ptr<gpu::Window> window_;
+    std::shared_ptr<gpu::Window> window_;  // before the context: it outlives what presents to it
     std::unique_ptr<gpu::Context> ctx_;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages_;
     std::unique_ptr<DefaultScene> scene_;

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The kiosk in a window under Xvfb (issue 32): `echosim run --kiosk` opens fullscreen at the display's
 # resolution (a 1920x1080 screen, and a 3840x2160 one), presents its frames with the trainer's start
-# screen over them, and exits cleanly with the validation layer silent. The cases' coarse volumes are
-# made into the test's own cache; the records go to its own folder.
+# screen over them, and exits cleanly with the validation layer silent; then a lesson started on
+# another case changes runner in the same window (below). The cases' coarse volumes are made into
+# the test's own cache; the records go to its own folder.
 set -euo pipefail
 echosim=$1
 work=$2
@@ -21,4 +22,48 @@ for screen in 1920x1080 3840x2160; do
   grep -q "presented 12 frames" "$log" || { echo "FAIL: did not present 12 frames"; exit 1; }
   ! grep -qi "validation reported" "$log" || { echo "FAIL: validation messages"; exit 1; }
 done
+
+# A lesson on another case, as a trainee starts one: F5 (the next case: the large patient) and Enter
+# on the start screen, tapped into the window by xdotool. The run changes runner for that case's
+# volumes, and the fullscreen window stays: the same X window before and after, the desk behind it
+# never shown. (GLFW reads the F-keys by polling: a tap between two frames must still count.)
+command -v xdotool >/dev/null || { echo "xdotool missing: scripts/deps installs it"; exit 1; }
+log="$work/kiosk-switch.log"
+display=:$((90 + RANDOM % 400))
+Xvfb "$display" -screen 0 1280x720x24 -nolisten tcp >/dev/null 2>&1 &
+xvfb=$!
+trap 'kill $xvfb 2>/dev/null || true' EXIT
+export DISPLAY=$display
+for _ in $(seq 1 50); do xdpyinfo >/dev/null 2>&1 && break; sleep 0.2; done
+"$echosim" run --kiosk --coarse --gpu cpu --validation >"$log" 2>&1 &
+app=$!
+window=""
+for _ in $(seq 1 600); do
+  window=$(xdotool search --name "echosim" 2>/dev/null | head -1 || true)
+  [[ -n "$window" ]] && grep -q "llvmpipe" "$log" && break
+  kill -0 $app 2>/dev/null || break
+  sleep 0.5
+done
+[[ -n "$window" ]] || { cat "$log"; kill $app 2>/dev/null; echo "FAIL: the kiosk's window never showed"; exit 1; }
+sleep 2
+xdotool key --window "$window" F5 || true
+sleep 1
+xdotool key --window "$window" Return || true
+for _ in $(seq 1 600); do grep -q "the lesson's case" "$log" && break; kill -0 $app 2>/dev/null || break; sleep 0.5; done
+sleep 3  # the new runner's frames
+after=$(xdotool search --name "echosim" 2>/dev/null | tr '\n' ' ' || true)
+# the instructor's keys end the kiosk (Esc does not)
+xdotool key --window "$window" ctrl+alt+q || true
+for _ in $(seq 1 120); do kill -0 $app 2>/dev/null || break; sleep 0.5; done
+kill $app 2>/dev/null && echo "the kiosk did not end on Ctrl+Alt+Q: killed"
+set +e
+wait $app
+rc=$?
+set -e
+cat "$log"
+[[ $rc -eq 0 ]] || { echo "FAIL: the kiosk that changed case exited $rc"; exit 1; }
+grep -q "the lesson's case: case large-patient" "$log" || { echo "FAIL: F5 and Enter did not start a lesson on the large patient"; exit 1; }
+[[ "$after" == "$window " ]] || { echo "FAIL: the window was $window before the change of case, '$after' after"; exit 1; }
+[[ $(grep -c "the runner stepped" "$log") -eq 2 ]] || { echo "FAIL: not two runners, one a case"; exit 1; }
+! grep -qi "validation reported" "$log" || { echo "FAIL: validation messages"; exit 1; }
 echo "PASS"
