@@ -57,6 +57,7 @@ public:
     bool poll(runner::Runner& runner, double dt_s) override
     {
         glfwPollEvents();
+        if (trainer_) trainer_->read_ui();  // before the probe's keys: a tapped key is read once (sticky keys)
         RunInput in = source_->poll(float(dt_s));
         if (trainer_) trainer_->filter(runner, in);  // the trainer's UI first: a name typed moves no probe
         if (in.quit) return false;

@@ -228,11 +228,18 @@ void TrainerWindow::detach()
     }
 }
 
+void TrainerWindow::read_ui()
+{
+    typed_ = {};
+    if (!input_ || !driver_) return;
+    typed_ = input_->poll();
+    driver_->feed(typed_);
+}
+
 void TrainerWindow::filter(runner::Runner&, RunInput& in)
 {
     if (!input_ || !driver_) return;
-    const ui::UiInput typed = input_->poll();
-    driver_->feed(typed);
+    const ui::UiInput& typed = typed_;
     const ui::UiPass* ui = driver_->ui();
     if (ui && ui->wants_text() && (!typed.chars.empty() || !typed.pressed.empty() || !typed.held.empty())) {
         // a name being typed: its letters are no probe, scanner or window keys

@@ -67,7 +67,12 @@ public:
     void configure(runner::RunnerConfig& config);
     // The runner made: the window's UI input, and a lesson that waited for its case started anew.
     void attach(runner::Runner& runner);
-    // Each step, before the run's own input is applied.
+    // Each step, before the run's own input is read: the window's keys and mouse for the UI. First,
+    // because the keys are sticky (a tap between two polls reads as pressed once): the UI's
+    // shortcuts (C, N, I, Ctrl+Alt+Q, F-keys) must see a tap before the probe's keys (Q/E, W/S ...)
+    // are read and consume it.
+    void read_ui();
+    // Each step, the run's own input read: a name typed moves no probe; the kiosk's limits.
     void filter(runner::Runner& runner, RunInput& in);
     // After a runner ended: whether the run goes on with another case's runner.
     bool again() const { return driver_ && driver_->case_wanted().has_value(); }
@@ -80,6 +85,7 @@ private:
     std::shared_ptr<trainer::Trainer> trainer_;
     std::shared_ptr<trainer::TrainerDriver> driver_;
     std::unique_ptr<UiWindowInput> input_;
+    ui::UiInput typed_;  // the UI input read this step (read_ui), for filter
     std::string loaded_;          // the case whose volumes the runner holds
     VolumePair volumes_;
     bool resume_ = false;         // a lesson waits for its case's runner

@@ -26,7 +26,9 @@ done
 # A lesson on another case, as a trainee starts one: F5 (the next case: the large patient) and Enter
 # on the start screen, tapped into the window by xdotool. The run changes runner for that case's
 # volumes, and the fullscreen window stays: the same X window before and after, the desk behind it
-# never shown. (GLFW reads the F-keys by polling: a tap between two frames must still count.)
+# never shown. The keys are tapped at once (xdotool --delay 0), as fast a tap as a frame can miss:
+# GLFW reads the trainer's keys by polling, and a tap between two frames must still count, before
+# the probe's keys are read (Q is both a probe key and Ctrl+Alt+Q's).
 command -v xdotool >/dev/null || { echo "xdotool missing: scripts/deps installs it"; exit 1; }
 log="$work/kiosk-switch.log"
 display=:$((90 + RANDOM % 400))
@@ -46,14 +48,14 @@ for _ in $(seq 1 600); do
 done
 [[ -n "$window" ]] || { cat "$log"; kill $app 2>/dev/null; echo "FAIL: the kiosk's window never showed"; exit 1; }
 sleep 2
-xdotool key --window "$window" F5 || true
+xdotool key --delay 0 --window "$window" F5 || true
 sleep 1
-xdotool key --window "$window" Return || true
+xdotool key --delay 0 --window "$window" Return || true
 for _ in $(seq 1 600); do grep -q "the lesson's case" "$log" && break; kill -0 $app 2>/dev/null || break; sleep 0.5; done
 sleep 3  # the new runner's frames
 after=$(xdotool search --name "echosim" 2>/dev/null | tr '\n' ' ' || true)
 # the instructor's keys end the kiosk (Esc does not)
-xdotool key --window "$window" ctrl+alt+q || true
+xdotool key --delay 0 --window "$window" ctrl+alt+q || true
 for _ in $(seq 1 120); do kill -0 $app 2>/dev/null || break; sleep 0.5; done
 kill $app 2>/dev/null && echo "the kiosk did not end on Ctrl+Alt+Q: killed"
 set +e
