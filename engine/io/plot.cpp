@@ -9,6 +9,8 @@
 #include <string_view>
 #include <utility>
 
+#include "io/raster.hpp"
+
 namespace echosim::io {
 namespace {
 
@@ -44,11 +46,7 @@ struct Rect {
 
 Rect rect_of(const PlotArea& a) { return {a.left, a.top, a.width, a.height}; }
 
-void fill_rect(RgbaImage& image, Rect r, Rgba colour)
-{
-    for (int y = r.top; y < r.bottom(); ++y)
-        for (int x = r.left; x < r.right(); ++x) blend_pixel(image, x, y, colour);
-}
+void fill_rect(RgbaImage& image, Rect r, Rgba colour) { io::fill_rect(image, r.left, r.top, r.width, r.height, colour); }
 
 void outline_rect(RgbaImage& image, Rect r, Rgba colour)
 {
