@@ -8,7 +8,7 @@
 set -euo pipefail
 echosim=$1
 fake=$2
-command -v Xvfb >/dev/null && command -v xdpyinfo >/dev/null || { echo "Xvfb or xdpyinfo missing: scripts/deps installs xvfb and x11-utils"; exit 1; }
+source "$(dirname "$0")/own_xvfb.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -29,12 +29,9 @@ grep -q '"library_found": true' "$work/devices.json" || fail "the fake libHD is 
 # one X server of the test's own for the three runs: xvfb-run's clean-up raced a command that ends at
 # once (the missing OpenHaptics, exit 2) and failed with its own exit 5 ("problem while cleaning up
 # temporary directory"), twice in this workplace
-display=:$((500 + RANDOM % 400))
-Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
-xvfb=$!
-trap 'kill $xvfb 2>/dev/null || true; rm -rf "$work"' EXIT
-for _ in $(seq 1 50); do DISPLAY=$display xdpyinfo >/dev/null 2>&1 && break; sleep 0.2; done
-run() { DISPLAY=$display "$echosim" run --frames 20 --width 640 --height 480 --gpu cpu \
+own_xvfb_cleanup() { rm -rf "$work"; }
+own_xvfb 1280x800x24
+run() { "$echosim" run --frames 20 --width 640 --height 480 --gpu cpu \
   --volume "$work/v.nrrd" --labels "$work/v.labels.nrrd" "$@"; }
 
 set +e

@@ -7,13 +7,14 @@
 set -euo pipefail
 echosim=$1
 work=$2
-command -v xvfb-run >/dev/null || { echo "xvfb-run missing: scripts/deps installs xvfb"; exit 1; }
+source "$(dirname "$0")/own_xvfb.sh"
 mkdir -p "$work"
 export XDG_CACHE_HOME="$work/cache" XDG_DATA_HOME="$work/data"
 for screen in 1920x1080 3840x2160; do
   log="$work/kiosk-$screen.log"
+  # each screen its own server, in a subshell so its exit stops it
   set +e
-  xvfb-run -a -s "-screen 0 ${screen}x24" "$echosim" run --kiosk --frames 12 --coarse --gpu cpu --validation >"$log" 2>&1
+  (own_xvfb "${screen}x24"; "$echosim" run --kiosk --frames 12 --coarse --gpu cpu --validation) >"$log" 2>&1
   rc=$?
   set -e
   cat "$log"
@@ -31,12 +32,7 @@ done
 # the probe's keys are read (Q is both a probe key and Ctrl+Alt+Q's).
 command -v xdotool >/dev/null || { echo "xdotool missing: scripts/deps installs it"; exit 1; }
 log="$work/kiosk-switch.log"
-display=:$((90 + RANDOM % 400))
-Xvfb "$display" -screen 0 1280x720x24 -nolisten tcp >/dev/null 2>&1 &
-xvfb=$!
-trap 'kill $xvfb 2>/dev/null || true' EXIT
-export DISPLAY=$display
-for _ in $(seq 1 50); do xdpyinfo >/dev/null 2>&1 && break; sleep 0.2; done
+own_xvfb 1280x720x24
 "$echosim" run --kiosk --coarse --gpu cpu --validation >"$log" 2>&1 &
 app=$!
 window=""

@@ -3,15 +3,17 @@
 # minimised and made fullscreen, then exits cleanly with the validation layer silent.
 set -euo pipefail
 echosim=$1
-command -v xvfb-run >/dev/null || { echo "xvfb-run missing: scripts/deps installs xvfb"; exit 1; }
+source "$(dirname "$0")/own_xvfb.sh"
 log=$(mktemp)
 work=$(mktemp -d)
 trap 'rm -rf "$log" "$work"' EXIT
 # a small volume of the user's own (a short, coarse sweep reconstructed), shown live beside the scene
 "$echosim" phantom --frames 24 --pixel-mm 0.3 --out "$work/s.mha" >/dev/null
 "$echosim" reconstruct --sweep "$work/s.mha" --out "$work/v.nrrd" --voxel-mm 0.5 >/dev/null 2>&1
+own_xvfb_cleanup() { rm -rf "$log" "$work"; }
+own_xvfb 1920x1080x24
 set +e
-xvfb-run -a -s "-screen 0 1920x1080x24" "$echosim" run --frames 80 --exercise --width 800 --height 600 \
+"$echosim" run --frames 80 --exercise --width 800 --height 600 \
   --volume "$work/v.nrrd" --labels "$work/v.labels.nrrd" --gpu cpu --validation >"$log" 2>&1
 rc=$?
 set -e
