@@ -333,7 +333,7 @@ int run_window(const RunArgs& args)
                 return kExitFailure;
             }
             making.finish();
-            std::printf("echosim run: the lesson's case: %s\n", volumes.description.c_str());
+            std::printf("echosim run: %s: %s\n", trainer->lesson_waits() ? "the lesson's case" : "the chosen case", volumes.description.c_str());
         }
     }
     const int presented = console->presented();

@@ -31,14 +31,24 @@ std::string anatomy_digest(const echo::Anatomy& a)
     return number;
 }
 
+namespace {
+
+// by the anatomy alone: cases that differ only in their stations or bands share one volume
+std::string exam_entry(const exam::Scenario& scenario, bool coarse)
+{
+    return cache_entry_name("exam-" + anatomy_digest(scenario.anatomy).substr(0, 12) + (coarse ? "-coarse" : ""));
+}
+
+}  // namespace
+
+bool exam_volume_cached(const exam::Scenario& scenario, bool coarse) { return volume_cached(exam_entry(scenario, coarse)); }
+
 VolumePair exam_volume(const exam::Scenario& scenario, bool coarse, const gpu::ContextOptions& gpu,
                        const std::function<void(const std::string&, double)>& progress)
 {
     echo::CaseVolumeOptions options = coarse ? echo::coarse_case_volume_options() : echo::CaseVolumeOptions{};
     options.imager = bmode_imager_factory(gpu, "echosim exam");
-    // by the anatomy alone: cases that differ only in their stations or bands share one volume
-    const std::string stem = "exam-" + anatomy_digest(scenario.anatomy).substr(0, 12) + (coarse ? "-coarse" : "");
-    return cached_volume(cache_entry_name(stem), "case " + scenario.id + "'s volume", [&] {
+    return cached_volume(exam_entry(scenario, coarse), "case " + scenario.id + "'s volume", [&] {
         const scene::LegModel leg;
         return echo::make_case_volume(leg, scenario.anatomy, options, progress);
     }, progress);

@@ -18,6 +18,9 @@ namespace echosim::app {
 VolumePair exam_volume(const exam::Scenario& scenario, bool coarse, const gpu::ContextOptions& gpu,
                        const std::function<void(const std::string& stage, double done)>& progress);
 
+// Whether exam_volume would read the case's volume from the cache (not make it).
+bool exam_volume_cached(const exam::Scenario& scenario, bool coarse);
+
 // The digest of the anatomy's every number (FNV-1a 64 over their shortest round-trip text): the
 // cache's key, the same on every machine.
 std::string anatomy_digest(const echo::Anatomy& anatomy);

@@ -158,11 +158,55 @@ VolumePair TrainerWindow::load_volumes(const gpu::ContextOptions& gpu, TerminalP
     if (!args_.volume.empty()) {
         // the user's own volume serves every case (its labels judge the compression)
         if (!volumes_.volume) volumes_ = user_volume(args_.volume, args_.labels);
-    } else if (loaded_ != c.id || !volumes_.volume) {
+        loaded_ = c.id;
+        return volumes_;
+    }
+    const bool first = !preparer_;
+    if (first) {
+        const bool coarse = args_.coarse;
+        preparer_ = std::make_unique<VolumePreparer>(
+            [coarse, gpu](const exam::Scenario& s, const VolumePreparer::Progress& p) { return exam_volume(s, coarse, gpu, p); },
+            [coarse](const exam::Scenario& s) { return exam_volume_cached(s, coarse); });
+        if (args_.kiosk) preparer_->also_make(trainer_->cases());  // a kiosk's trainees never wait
+        trainer_->set_readiness([this](const exam::Scenario& s) { return readiness(s); });
+    }
+    if (loaded_ == c.id && volumes_.volume) return volumes_;
+    placeholder_ = false;
+    if (std::optional<VolumePair> held = preparer_->take(c.id)) {
+        volumes_ = std::move(*held);
+    } else if (!first || exam_volume_cached(c, args_.coarse)) {
+        // read from the cache at once (a few seconds at most); a runner is asked for a case only
+        // once the preparer holds it, so later runners take theirs above
         volumes_ = exam_volume(c, args_.coarse, gpu, progress);
+    } else {
+        // the window opens now, its volume an empty one far from the leg, while the chosen case's
+        // is made (the start screen shows how far)
+        preparer_->want(c);
+        auto empty = std::make_shared<io::Volume>();
+        empty->size = {2, 2, 2};
+        empty->origin = glm::dvec3(1e5);
+        empty->data.assign(8, 0);
+        volumes_ = {empty, nullptr, "none yet: case " + c.id + "'s volume is being made (once; it is cached), the start screen shows how far"};
+        placeholder_ = true;
+        loaded_.clear();
+        return volumes_;
     }
     loaded_ = c.id;
     return volumes_;
+}
+
+trainer::CaseReadiness TrainerWindow::readiness(const exam::Scenario& c) const
+{
+    if (!preparer_ || (c.id == loaded_ && volumes_.volume)) return {};
+    const VolumePreparer::Status st = preparer_->status(c.id);
+    switch (st.state) {
+    case VolumePreparer::State::ready: return {};
+    case VolumePreparer::State::making:
+        return {false, "This case's images are being made, once (then kept): " + st.stage + ".", st.done};
+    case VolumePreparer::State::failed: return {false, "This case's images could not be made: " + st.error};
+    case VolumePreparer::State::waiting: break;
+    }
+    return {false, "This case's images are to be made next, once (then kept)."};
 }
 
 void TrainerWindow::configure(runner::RunnerConfig& config)
@@ -217,7 +261,7 @@ void TrainerWindow::attach(runner::Runner& runner)
 void TrainerWindow::detach()
 {
     input_.reset();
-    resume_ = again();
+    resume_ = again() && trainer_->screen() == trainer::Screen::exam;  // not the first runner's giving way
     // the run ends mid-lesson (the window closed, Ctrl+Alt+Q, a signal): the lesson is scored and
     // stored as it stands, as the idle timeout stores it
     if (!resume_ && trainer_->screen() == trainer::Screen::exam) {
@@ -234,6 +278,33 @@ void TrainerWindow::read_ui()
     if (!input_ || !driver_) return;
     typed_ = input_->poll();
     driver_->feed(typed_);
+    log_screen();
+    if (!preparer_) return;
+    // the making waits while a lesson runs (its cores are the exam's); on the start screen it
+    // makes the case chosen there, and the first runner gives way once that case is ready
+    const bool start = trainer_->screen() == trainer::Screen::start;
+    preparer_->pause(trainer_->screen() == trainer::Screen::exam);
+    if (start) preparer_->want(trainer_->chosen_case());
+    if (placeholder_ && start && !driver_->case_wanted() && trainer_->readiness(trainer_->chosen_case()).ready)
+        driver_->want_case(trainer_->chosen_case().id);
+}
+
+void TrainerWindow::log_screen()
+{
+    // a step after the change (the trainer changes screen in the runner's step): a kiosk's log
+    // says who did which lesson when, line by line
+    const trainer::Trainer& t = *trainer_;
+    if (t.screen() == logged_) return;
+    logged_ = t.screen();
+    if (logged_ == trainer::Screen::exam) {
+        std::printf("echosim run: a lesson started: %s on case %s, trainee '%s'\n", exam::protocol_name(t.form().lesson), t.lesson().id.c_str(),
+                    t.form().trainee.c_str());
+    } else if (logged_ == trainer::Screen::report) {
+        std::printf("echosim run: the lesson finished: scored %.0f %% (pass mark %.0f %%), %s; report: %s\n", 100 * t.report().score,
+                    100 * t.lesson().bands.pass_mark, t.stored_id() ? "stored in the records" : "not stored in the records",
+                    (t.report_dir() / "report.html").c_str());
+    }
+    std::fflush(stdout);
 }
 
 void TrainerWindow::filter(runner::Runner&, RunInput& in)

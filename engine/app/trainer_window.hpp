@@ -5,8 +5,13 @@
 //
 //   - the cases: the shipped ones (assets/cases); `--case ID` (or random) pre-selects one; their
 //     volumes are the exams' (app/exam_volume.hpp, made once and cached), a runner holds one case's,
-//     so a lesson started on another case ends the runner and the run starts a new one for it
-//     (the window closes and opens again; the terminal shows a volume's first making);
+//     so a lesson started on another case ends the runner and the run starts a new one for it in
+//     the same window (runner::RunnerConfig::shared_window);
+//   - a case's volume not cached yet is made on a thread of its own (app/volume_preparer.hpp)
+//     while the window runs: the chosen case's first (the start screen says how far it is, and a
+//     start asked for begins the lesson once it is ready), then, in the kiosk, every other case's;
+//     the first runner, when the chosen case's volume is not cached, holds no case's (an empty
+//     volume: the image says it is outside the model) and gives way to one that holds it once made;
 //   - the UI's input from the window (UiWindowInput): GLFW polled for the mouse (sticky buttons: a
 //     click between two frames is kept) and the keys, typed characters from GLFW's character
 //     callback; fed to the trainer's driver;
@@ -26,6 +31,7 @@
 #include "app/commands.hpp"
 #include "app/run_input.hpp"
 #include "app/terminal_progress.hpp"
+#include "app/volume_preparer.hpp"
 #include "app/volume_source.hpp"
 #include "gpu/context.hpp"
 #include "runner/runner.hpp"
@@ -74,6 +80,10 @@ public:
     void read_ui();
     // Each step, the run's own input read: a name typed moves no probe; the kiosk's limits.
     void filter(runner::Runner& runner, RunInput& in);
+    // The runner holds no case's volumes yet: the chosen one's are being made.
+    bool placeholder() const { return placeholder_; }
+    // After detach: a lesson started waits for the next runner (its case's).
+    bool lesson_waits() const { return resume_; }
     // After a runner ended: whether the run goes on with another case's runner.
     bool again() const { return driver_ && driver_->case_wanted().has_value(); }
     // The runner gone (its window with it); a lesson under way when the run ends is scored and
@@ -89,6 +99,12 @@ private:
     std::string loaded_;          // the case whose volumes the runner holds
     VolumePair volumes_;
     bool resume_ = false;         // a lesson waits for its case's runner
+    bool placeholder_ = false;    // the runner holds the empty volume (above)
+    std::unique_ptr<VolumePreparer> preparer_;  // none with the user's own volume
+    trainer::Screen logged_ = trainer::Screen::start;  // the screen the log last said
+    void log_screen();
+    // what the start screen says of a case's volume (the preparer's status)
+    trainer::CaseReadiness readiness(const exam::Scenario& c) const;
 };
 
 }  // namespace echosim::app

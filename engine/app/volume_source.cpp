@@ -140,6 +140,13 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
 
 std::string cache_entry_name(const std::string& stem) { return stem + "-" + kRecipe; }
 
+bool volume_cached(const std::string& name)
+{
+    const std::filesystem::path folder = cache_folder() / "volumes" / name;
+    std::error_code ec;
+    return std::filesystem::exists(folder / "volume.nrrd", ec) && std::filesystem::exists(folder / "labels.nrrd", ec);
+}
+
 VolumePair cached_volume(const std::string& name, const std::string& what, const std::function<echo::CaseVolume()>& make,
                          const std::function<void(const std::string&, double)>& progress)
 {
@@ -148,7 +155,7 @@ VolumePair cached_volume(const std::string& name, const std::string& what, const
     std::error_code ec;
     // pairs that runs killed while making them left half written (any case's, any recipe's)
     io::remove_stale(folder.parent_path(), kPartialMarker, std::nullopt, io::TempKind::folders);
-    if (std::filesystem::exists(volume_file) && std::filesystem::exists(labels_file)) {
+    if (volume_cached(name)) {
         try {
             VolumePair pair = user_volume(volume_file, labels_file);
             pair.description = what + ", cached in " + folder.string();

@@ -45,6 +45,8 @@ VolumePair case_volume(echo::Case which, const std::function<void(const std::str
 // names it in the description. The case volume above is one such entry; an exam's case is another.
 VolumePair cached_volume(const std::string& name, const std::string& what, const std::function<echo::CaseVolume()>& make,
                          const std::function<void(const std::string& stage, double done)>& progress);
+// Whether the pair `name` is in the cache (cached_volume would read it, not make it).
+bool volume_cached(const std::string& name);
 // `stem` with the version of the recipe that makes volumes (bumped when what they hold changes).
 std::string cache_entry_name(const std::string& stem);
 

@@ -81,8 +81,19 @@ void Trainer::start(double time_s)
     restart(time_s);
 }
 
+Action Trainer::request_start(double time_s)
+{
+    if (!readiness(chosen_case()).ready) {
+        start_waiting_ = true;
+        return Action::none;
+    }
+    start(time_s);
+    return Action::started;
+}
+
 void Trainer::restart(double time_s)
 {
+    start_waiting_ = false;
     const scene::LegModel leg;
     const echo::Phantom phantom(leg, lesson_.anatomy);
     scorer_ = std::make_unique<exam::Scorer>(lesson_, exam::station_truth(phantom, lesson_));
@@ -175,6 +186,7 @@ void Trainer::finish(bool to_start)
 void Trainer::new_lesson()
 {
     screen_ = Screen::start;
+    start_waiting_ = false;
     message_.clear();
     report_images_ = false;
 }
@@ -194,10 +206,7 @@ Action Trainer::keys(const ui::UiInput& in, double time_s, bool text_active)
         if (in.was_pressed(Key::f5)) form_.case_index = form_.case_index < 0 || form_.case_index >= n - 1 ? 0 : form_.case_index + 1;
         if (in.was_pressed(Key::f6)) form_.case_index = -1;
         if (in.was_pressed(Key::f7)) form_.difficulty = Difficulty((int(form_.difficulty) + 1) % 3);
-        if (in.was_pressed(Key::enter)) {
-            start(time_s);
-            return Action::started;
-        }
+        if (in.was_pressed(Key::enter)) return request_start(time_s);
         return Action::none;
     }
     case Screen::exam:
@@ -227,6 +236,10 @@ Action Trainer::tick(double time_s, bool active)
         if (active) last_pose_ = p;
     }
     if (active) last_active_s_ = time_s;
+    if (screen_ == Screen::start && start_waiting_ && readiness(chosen_case()).ready) {
+        start(time_s);
+        return Action::started;
+    }
     if (options_.idle_timeout_s <= 0 || time_s - last_active_s_ < options_.idle_timeout_s) return Action::none;
     last_active_s_ = time_s;
     if (screen_ == Screen::exam) {

@@ -58,6 +58,14 @@ struct StartForm {
 // What the trainer asks the driver to do after an input (the driver owns the runner).
 enum class Action { none, started, finished, quit };
 
+// Whether a case's volumes are ready for a lesson (its images: made once, then cached), and if not,
+// the line the start screen shows instead ("The case's images are being made ...: 43 %").
+struct CaseReadiness {
+    bool ready = true;
+    std::string line;
+    double done = -1;  // how far the making is, 0..1 (< 0: not being made now)
+};
+
 class Trainer {
 public:
     // Reads every case (throws exam::ScenarioError naming a bad one).
@@ -78,6 +86,14 @@ public:
     // stations, their truth from the case's phantom, a new scorer. Throws std::invalid_argument
     // when the case cannot be examined by the lesson's protocol.
     void start(double time_s);
+    // Start asked for (Enter, the button): the lesson starts now when the chosen case is ready
+    // (Action::started), else once it is (tick returns Action::started then; the case chosen then).
+    Action request_start(double time_s);
+    // How the trainer learns whether a case is ready (the run's volume preparer); none: all are.
+    void set_readiness(std::function<CaseReadiness(const exam::Scenario&)> readiness) { readiness_ = std::move(readiness); }
+    CaseReadiness readiness(const exam::Scenario& c) const { return readiness_ ? readiness_(c) : CaseReadiness{}; }
+    // A start asked for waits for the chosen case's images.
+    bool start_waiting() const { return start_waiting_; }
     // Starts the same lesson again at `time_s`, a new scorer (the driver rebuilt the runner for the
     // lesson's case: a new session, its clock from 0).
     void restart(double time_s);
@@ -126,8 +142,9 @@ public:
     //   report: Enter a new lesson, I the stations' images or their table
     //   any:    Ctrl+Alt+Q quit (the instructor's); Esc quits unless in the kiosk
     Action keys(const ui::UiInput& in, double time_s, bool text_active);
-    // Counts the input and the probe's motion as activity; applies the idle timeout at `time_s`.
-    // Returns Action::finished when it ended an exam.
+    // Counts the input and the probe's motion as activity; applies the idle timeout at `time_s`;
+    // starts a lesson that waited for its case once the case is ready. Returns Action::finished
+    // when it ended an exam, Action::started when it started one.
     Action tick(double time_s, bool active);
     bool guidance_on() const { return guidance_on_; }
     double idle_s(double time_s) const { return time_s - last_active_s_; }
@@ -154,6 +171,8 @@ private:
     std::string error_, message_;
     bool guidance_on_ = true;
     bool report_images_ = false;
+    std::function<CaseReadiness(const exam::Scenario&)> readiness_;
+    bool start_waiting_ = false;
     double last_active_s_ = 0;
     Pose last_pose_;
 };

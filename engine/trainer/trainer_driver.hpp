@@ -57,6 +57,9 @@ public:
     const std::optional<std::string>& case_wanted() const { return case_wanted_; }
     // The next frame read back (offscreen) into `sink`, once.
     void capture(std::function<void(const io::RgbaImage&)> sink) { capture_ = std::move(sink); }
+    // Asks the driver's owner for a runner holding `case_id`'s volumes with no lesson started (the
+    // run's first runner holds no case's while its volume is made: app/trainer_window.hpp).
+    void want_case(const std::string& case_id) { case_wanted_ = case_id; }
     // Every case's lesson runs on the volumes held (a user's own volume): none asks for a runner anew.
     void accept_any_case() { any_case_ = true; }
     // The caliper on the frozen image during a lesson (trainer/caliper.hpp): a left click on the

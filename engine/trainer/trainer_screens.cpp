@@ -67,7 +67,7 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
     Action action = Action::none;
     StartForm& form = t.form();
     const float w = std::min(float(extent.width) * 0.9f, 760.0f * scale);
-    const float h = std::min(float(extent.height) * 0.92f, 700.0f * scale);
+    const float h = std::min(float(extent.height) * 0.96f, 740.0f * scale);  // a long case description fits at 720
     ImGui::SetNextWindowPos(ImVec2((float(extent.width) - w) * 0.5f, (float(extent.height) - h) * 0.5f));
     ImGui::SetNextWindowSize(ImVec2(w, h));
     ImGui::Begin("echosim trainer", nullptr, kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBackground);
@@ -119,16 +119,29 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
     ImGui::TextColored(kGrey, "Beginner: guidance arrow, directions and distances. Intermediate: fainter, no distances. Expert: none.");
 
     ImGui::Spacing();
-    const bool start = big_button("Start  (Enter)", ImVec2(w * 0.4f, 56 * scale), fonts, kGreen);
+    // the chosen case's images not made yet (the first run, a kiosk's cases): how far they are; a
+    // start asked for then begins the lesson once they are ready
+    const CaseReadiness ready = t.readiness(t.chosen_case());
+    const char* label = ready.ready ? "Start  (Enter)" : t.start_waiting() ? "Starts when ready" : "Start when ready  (Enter)";
+    const bool start = big_button(label, ImVec2(w * 0.4f, 56 * scale), fonts, ready.ready ? kGreen : kGrey);
     remember(state, "start");
-    if (start) {
-        t.start(view.time_s);
-        action = Action::started;
+    if (start) action = t.request_start(view.time_s);
+    if (!ready.ready) {  // beside the button: the screen's height is taken
+        ImGui::SameLine();
+        ImGui::BeginGroup();
+        ImGui::PushTextWrapPos(w - 20 * scale);
+        ImGui::TextColored(kAmber, "%s", ready.line.c_str());
+        ImGui::PopTextWrapPos();
+        if (ready.done >= 0) {
+            ImGui::PushStyleColor(ImGuiCol_PlotHistogram, kAmber);
+            ImGui::ProgressBar(float(std::clamp(ready.done, 0.0, 1.0)), ImVec2(w * 0.5f, 0));
+            ImGui::PopStyleColor();
+        }
+        ImGui::EndGroup();
     }
-    ImGui::Spacing();
     ImGui::Separator();
-    ImGui::TextColored(kGrey, "In the exam: C compressible, N not compressible, End finish, H guidance on/off. %s",
-                       t.options().kiosk ? "Instructor: Ctrl+Alt+Q quits." : "Esc or Ctrl+Alt+Q quits.");
+    ImGui::TextColored(kGrey, "The exam: C compressible, N not compressible, End finish, H guidance on/off. %s",
+                       t.options().kiosk ? "Ctrl+Alt+Q quits." : "Esc quits.");
     ImGui::TextColored(kGrey, "The probe: right-drag or arrows slide, W/S press, Q/E A/D tilt, R levels; green marker to the patient's right.");
     ImGui::TextColored(kGrey, "The scanner: ] and [ depth, + and - gain, Page Up/Down focus, Space freezes (then click twice to measure).");
     ImGui::End();

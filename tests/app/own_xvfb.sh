@@ -9,7 +9,9 @@ own_xvfb() {
   ready=$(mktemp)
   Xvfb -displayfd 3 -screen 0 "$1" -nolisten tcp 3>"$ready" >/dev/null 2>&1 &
   own_xvfb_pid=$!
-  trap 'kill $own_xvfb_pid 2>/dev/null || true; own_xvfb_cleanup' EXIT
+  # stopped and waited for: a server still ending removes its socket after the next one (which
+  # takes the display its lock left free) made the same, and that one cannot be reached
+  trap 'kill $own_xvfb_pid 2>/dev/null && wait $own_xvfb_pid 2>/dev/null; own_xvfb_cleanup' EXIT
   for _ in $(seq 1 600); do
     [[ -s "$ready" ]] && break
     kill -0 $own_xvfb_pid 2>/dev/null || { echo "FAIL: Xvfb ($1) exited before it took a display"; exit 1; }

@@ -178,6 +178,45 @@ TEST(TrainerScreens, KeysDriveTheStartScreenAndTheKioskKeepsEsc)
     EXPECT_EQ(kiosk.screen(), Screen::exam);
 }
 
+TEST(TrainerScreens, AStartWaitsForItsCasesImagesAndBeginsOnceTheyAreReady)
+{
+    trainer::Trainer t(options("readiness"));
+    t.set_report_maker(plain_report);
+    // the case chosen (the first, then the next) is being made; the others are ready
+    std::string making = t.cases()[1].id;
+    t.set_readiness([&](const exam::Scenario& c) {
+        return c.id == making ? trainer::CaseReadiness{false, "being made: 43 %"} : trainer::CaseReadiness{};
+    });
+    t.keys(key(ui::Key::f5), 0, false);
+    EXPECT_FALSE(t.readiness(t.chosen_case()).ready);
+    EXPECT_EQ(t.readiness(t.chosen_case()).line, "being made: 43 %");
+    EXPECT_EQ(t.keys(key(ui::Key::enter), 1.0, false), trainer::Action::none);
+    EXPECT_EQ(t.screen(), Screen::start);
+    EXPECT_TRUE(t.start_waiting());
+    EXPECT_EQ(t.tick(2.0, false), trainer::Action::none);  // still being made
+    EXPECT_EQ(t.screen(), Screen::start);
+    making.clear();  // made
+    EXPECT_EQ(t.tick(3.0, false), trainer::Action::started);
+    EXPECT_EQ(t.screen(), Screen::exam);
+    EXPECT_EQ(t.lesson().id, t.cases()[1].id);
+    EXPECT_DOUBLE_EQ(t.started_s(), 3.0);
+    EXPECT_FALSE(t.start_waiting());
+    // a ready case starts at once, and a new lesson forgets a start that waited
+    t.finish();
+    t.new_lesson();
+    EXPECT_EQ(t.keys(key(ui::Key::enter), 4.0, false), trainer::Action::started);
+    t.finish();
+    t.new_lesson();
+    making = t.chosen_case().id;
+    EXPECT_EQ(t.request_start(5.0), trainer::Action::none);
+    t.finish();  // not in an exam: nothing
+    t.new_lesson();
+    EXPECT_FALSE(t.start_waiting());
+    making.clear();
+    EXPECT_EQ(t.tick(6.0, false), trainer::Action::none);
+    EXPECT_EQ(t.screen(), Screen::start);
+}
+
 TEST(TrainerScreens, ACallLandsOnTheStationExaminedAndFinishStoresTheSession)
 {
     trainer::Trainer t(options("call"));
