@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <thread>
 
 #include <GLFW/glfw3.h>
 
@@ -287,6 +288,12 @@ void TrainerWindow::read_ui()
     if (start) preparer_->want(trainer_->chosen_case());
     if (placeholder_ && start && !driver_->case_wanted() && trainer_->readiness(trainer_->chosen_case()).ready)
         driver_->want_case(trainer_->chosen_case().id);
+    // while a volume is made, the start screen is drawn at most kMakingFrameRate a second: on
+    // lavapipe its frames take the cores the making needs (a case's volume behind a 1080p start
+    // screen drawn at 32 frames/s took 49 s, alone 27 s; bench/RESULTS.md)
+    const auto now = std::chrono::steady_clock::now();
+    if (start && preparer_->busy()) std::this_thread::sleep_until(last_ui_ + std::chrono::microseconds(long(1e6 / kMakingFrameRate)));
+    last_ui_ = std::max(now, std::chrono::steady_clock::now());
 }
 
 void TrainerWindow::log_screen()

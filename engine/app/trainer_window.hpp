@@ -24,6 +24,7 @@
 // Threads: the main thread (GLFW's rule).
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -102,6 +103,8 @@ private:
     bool placeholder_ = false;    // the runner holds the empty volume (above)
     std::unique_ptr<VolumePreparer> preparer_;  // none with the user's own volume
     trainer::Screen logged_ = trainer::Screen::start;  // the screen the log last said
+    static constexpr double kMakingFrameRate = 10;    // the start screen's while a volume is made
+    std::chrono::steady_clock::time_point last_ui_;   // the last read_ui's end
     void log_screen();
     // what the start screen says of a case's volume (the preparer's status)
     trainer::CaseReadiness readiness(const exam::Scenario& c) const;

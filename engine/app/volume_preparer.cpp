@@ -68,6 +68,12 @@ std::optional<VolumePair> VolumePreparer::take(const std::string& case_id) const
     return held_;
 }
 
+bool VolumePreparer::busy() const
+{
+    std::lock_guard lock(mutex_);
+    return !current_id_.empty();
+}
+
 std::pair<int, int> VolumePreparer::made() const
 {
     std::lock_guard lock(mutex_);

@@ -60,6 +60,8 @@ public:
     Status status(const std::string& case_id) const;
     // The volumes of `case_id` when held (they stay held: a runner rebuilt takes them again).
     std::optional<VolumePair> take(const std::string& case_id) const;
+    // Whether a volume is being made or read now.
+    bool busy() const;
     // How many of also_make's cases are cached or held, of how many.
     std::pair<int, int> made() const;
 
