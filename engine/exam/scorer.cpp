@@ -63,6 +63,16 @@ echo::EchoFrame unpressed(const echo::EchoFrame& pressed)
     return rest;
 }
 
+double station_image_depth_mm(const StationTruth& truth, const echo::EchoFrame& pressed, double trainee_depth_mm)
+{
+    const Pose rest = unpressed(pressed).face;
+    const glm::dvec3 beam = glm::normalize(glm::dvec3(rest.axis_y()));
+    const double far_mm = glm::dot(truth.vein.centre - glm::dvec3(rest.position), beam) + truth.vein.radius_mm + kStationImageMarginMm;
+    double depth = std::clamp(trainee_depth_mm, kLinearProbe.image_depth_min_mm, kLinearProbe.image_depth_max_mm);
+    while (depth < far_mm && depth + 10.0 <= kLinearProbe.image_depth_max_mm + 1e-9) depth += 10.0;
+    return depth;
+}
+
 Compression measure_compression(const StationTruth& truth, const echo::EchoFrame& pressed, const echo::ImagePlane& plane,
                                 const LabelImager& labels)
 {
@@ -168,7 +178,7 @@ void Scorer::observe(const ExamSample& s)
                 st.peak_force_N = s.force_N;
                 st.peak_at_s = s.time_s;
                 st.at_peak = g;
-                if (s.echo) st.deepest = *s.echo;
+                if (s.echo) st.deepest = *s.echo, st.deepest_depth_mm = s.image_depth_mm;
             }
             if (pressing && g.angle_deg > bands.transverse_deg && !st.oblique)
                 st.oblique = true, st.oblique_at_s = s.time_s, st.oblique_angle_deg = g.angle_deg;

@@ -79,6 +79,16 @@ Compression measure_compression(const StationTruth& truth, const echo::EchoFrame
 // The plane of `pressed` unpressed: the face where the skin was before the press, nothing deformed.
 echo::EchoFrame unpressed(const echo::EchoFrame& pressed);
 
+// How far below the vein's lumen at rest a station's report image reaches at least [mm].
+inline constexpr double kStationImageMarginMm = 3.0;
+// The depth a station's report image is made and measured at [mm]: the trainee's image's at its
+// deepest press, made deeper a centimetre at a time (up to the probe's deepest) until the vein's
+// lumen at rest (the tissue unpressed, seen from the pressed face: unpressed()) lies
+// kStationImageMarginMm above its bottom. A large patient's CFV (far wall 61 mm under the skin)
+// pressed less than 11 mm had its rest lumen cut off by a 50 mm image: its area at rest measured
+// short, and the trainee's own 70 mm image stood in the report at 50.
+double station_image_depth_mm(const StationTruth& truth, const echo::EchoFrame& pressed, double trainee_depth_mm);
+
 class Scorer {
 public:
     Scorer(const Scenario& scenario, std::vector<StationTruth> truth);
@@ -108,6 +118,8 @@ public:
     std::optional<std::size_t> last_examined() const { return last_examined_; }
     // The echo frame at each station's deepest press (none: never pressed there).
     const std::optional<echo::EchoFrame>& deepest_frame(std::size_t station) const { return stations_[station].deepest; }
+    // The depth of the trainee's image at that press [mm] (ExamSample::image_depth_mm).
+    double deepest_image_depth_mm(std::size_t station) const { return stations_[station].deepest_depth_mm; }
 
     // The report, given each station's compression (none: not measured, e.g. never pressed) and its
     // image's file name relative to the report ("" for none).
@@ -131,6 +143,7 @@ private:
         double peak_at_s = -1;
         Geometry at_peak;
         std::optional<echo::EchoFrame> deepest;
+        double deepest_depth_mm = kLinearProbe.image_depth_mm;
         bool oblique = false;
         double oblique_at_s = -1, oblique_angle_deg = 0;
         bool wrong_vessel = false;

@@ -26,13 +26,16 @@ exam::ExamReport write_exam_report(const exam::Scorer& scorer, const io::Volume&
 {
     std::filesystem::create_directories(out / "stations");
     const std::vector<exam::StationTruth>& truth = scorer.truth();
-    const echo::ImagePlane plane;
     const echo::ScannerSettings scanner;
     std::vector<std::optional<exam::Compression>> compression(truth.size());
     std::vector<std::string> images(truth.size());
     for (std::size_t i = 0; i < truth.size(); ++i) {
         const std::optional<echo::EchoFrame>& deepest = scorer.deepest_frame(i);
         if (!deepest) continue;
+        // the image as deep as the trainee's was, or as the vein's lumen at rest needs (the rows
+        // the same: the scanner's depth control's scale)
+        echo::ImagePlane plane;
+        plane.depth_mm = exam::station_image_depth_mm(truth[i], *deepest, scorer.deepest_image_depth_mm(i));
         // one image at the deepest press serves the report's picture and its deformed labels
         const echo::EchoImage pressed =
             echo::render_echo_cpu(volume, labels, plane, *deepest, scanner, patient, true, labels ? imaging : echo::Imaging::interpolative);

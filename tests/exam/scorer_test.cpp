@@ -114,6 +114,34 @@ TEST(Scorer, AVeinBelowTheImageIsNotReached)
     }
 }
 
+// A station's report image reaches below the vein's lumen at rest (kStationImageMarginMm): as deep
+// as the trainee's image at the deepest press, deeper a centimetre at a time when the vein at rest
+// under the pressed face would be cut off, never past the probe's deepest; and the depth kept is
+// the trainee's at the deepest press, not at the last sample.
+TEST(Scorer, AStationsReportImageHoldsTheVeinsLumenAtRest)
+{
+    StationTruth t = station("CFV", -100);  // the face's beam along +y; the vein 25 mm down, radius 4
+    echo::EchoFrame f;
+    f.face = at(0, -100);
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 50), 50.0);   // 25 + 4 + 3 = 32 mm needed
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 40), 40.0);   // the trainee's own shallower image
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 30), 40.0);   // 30 would cut it: one step
+    t.vein.centre.y = 48.0;                                      // 48 + 4 + 3 = 55 mm
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 50), 60.0);
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 70), 70.0);
+    t.vein.centre.y = 90.0;                                      // past the probe's reach: its deepest
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 50), kLinearProbe.image_depth_max_mm);
+    // pressed in, the face nearer the vein: what lies below it at rest is nearer too
+    t.vein.centre.y = 48.0;
+    f.face.position.y = 10.0f;
+    EXPECT_DOUBLE_EQ(station_image_depth_mm(t, f, 50), 50.0);
+
+    Scorer s(scenario(), {station("FV 10", -100)});
+    press(s, at(0, -100), 8, 0, 60.0);
+    press(s, at(0, -100), 4, 2.0, 40.0);  // a lighter press later, with a shallower image
+    EXPECT_DOUBLE_EQ(s.deepest_image_depth_mm(0), 60.0);
+}
+
 TEST(Scorer, TooLittlePressureOnly)
 {
     Scorer s(scenario(), {station("FV 10", -100)});
