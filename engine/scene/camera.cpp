@@ -21,7 +21,11 @@ glm::mat4 OrbitCamera::projection(float aspect) const
     // near and far bracket a room-sized scene in millimetres; depth maps to [0, 1]
     glm::mat4 p = glm::perspectiveRH_ZO(fov_y, aspect, 20.0f, 20000.0f);
     p[1][1] *= -1.0f;  // Vulkan's clip space has y pointing down
-    return p;
+    // the image shifted in clip space (x' = x + s w), so the target lands at target_on_screen
+    glm::mat4 shift(1.0f);
+    shift[3][0] = target_on_screen.x;
+    shift[3][1] = target_on_screen.y;
+    return shift * p;
 }
 
 void OrbitCamera::orbit(float d_yaw, float d_pitch)

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace echosim::scene {
@@ -15,6 +16,10 @@ struct OrbitCamera {
     float pitch = 1.05f;       // [rad] above the table plane
     float distance = 1000.0f;  // [mm]
     float fov_y = 0.65f;       // [rad]
+    // Where the target appears in the view, in normalised device coordinates (x right, y down, the
+    // view's edges at -1 and 1; 0: its centre): a view part covered (the trainer's exam panel over
+    // the leg's view) shows the target in the middle of what is left (projection() shifts the image).
+    glm::vec2 target_on_screen{0.0f, 0.0f};
 
     static constexpr glm::vec3 up{0.0f, -1.0f, 0.0f};
 
@@ -30,7 +35,8 @@ struct OrbitCamera {
     // user's. A dt that is not finite and positive moves nothing.
     void follow(const glm::vec3& point, float dt_s);
     static constexpr float kFollowS = 0.35f;  // [s]
-    // The default view again (angle, distance, field of view), looking at `target_now`.
+    // The default view again (angle, distance, field of view, the target at the centre), looking at
+    // `target_now`.
     void reset(const glm::vec3& target_now);
 };
 

@@ -43,6 +43,7 @@ runner::PassFactory TrainerDriver::ui_pass()
                 p->set_draw([this](const session::SessionView& view, VkExtent2D extent) {
                     const echo::ImagePlane plane = image_plane();
                     act(draw_trainer(*trainer_, view, plane, extent, ui_->fonts(), ui_->scale(), screens_));
+                    if (runner_) runner_->scene().camera.target_on_screen = probe_on_screen(screens_.exam_panel, extent, plane);
                     if (runner::SimulatorFrame* frame = runner_ ? runner_->frame() : nullptr; frame && trainer_->screen() == Screen::exam)
                         draw_scanner_marks(image_panel(extent, plane), frame->echo_image().scanner(), ui_->fonts(), ui_->scale());
                     update_caliper(extent);
@@ -51,6 +52,16 @@ runner::PassFactory TrainerDriver::ui_pass()
                 ui_ = p.get();
                 return p;
             }};
+}
+
+glm::vec2 probe_on_screen(const std::optional<ScreenState::Rect>& panel, VkExtent2D extent, const echo::ImagePlane& plane)
+{
+    if (!panel || extent.width == 0) return glm::vec2(0.0f);
+    const float view_w = runner::scene_rect(extent, plane).width * float(extent.width);
+    const float left = std::min(panel->x1, view_w);
+    // the middle of the view's part right of the panel, unless too little of it is left
+    if (view_w - left < 0.25f * view_w) return glm::vec2(0.0f);
+    return glm::vec2((0.5f * (left + view_w) - 0.5f * view_w) / (0.5f * view_w), 0.0f);
 }
 
 echo::ImagePlane TrainerDriver::image_plane()

@@ -37,6 +37,12 @@ struct DriverOptions {
     echo::PatientCase patient;
 };
 
+// Where the probe (the camera's target) should appear in the leg's view, in normalised device
+// coordinates: in the middle of the view's part right of the exam screen's panel (at 1280 x 720 the
+// panel covers more than half the view, the probe at its centre hidden under it); the centre when
+// there is no panel or too little of the view is left beside it.
+glm::vec2 probe_on_screen(const std::optional<ScreenState::Rect>& panel, VkExtent2D extent, const echo::ImagePlane& plane);
+
 class TrainerDriver final : public runner::Observer {
 public:
     TrainerDriver(std::shared_ptr<Trainer> trainer, DriverOptions options);

@@ -343,6 +343,8 @@ Action exam_screen(Trainer& t, const session::SessionView& view, const echo::Ima
         t.finish();
         action = Action::finished;
     }
+    const ImVec2 panel_at = ImGui::GetWindowPos(), panel_size = ImGui::GetWindowSize();
+    state.exam_panel = ScreenState::Rect{panel_at.x, panel_at.y, panel_at.x + panel_size.x, panel_at.y + panel_size.y};
     ImGui::End();
     return action;
 }
@@ -494,6 +496,7 @@ Action draw_trainer(Trainer& trainer, const session::SessionView& view, const ec
     const Screen shown = trainer.screen();
     if (shown != state.last) state.hotspots.clear();
     state.sheet_area.reset();
+    state.exam_panel.reset();
     Action a = Action::none;
     switch (shown) {
     case Screen::start: a = start_screen(trainer, view, extent, fonts, scale, state); break;

@@ -41,6 +41,8 @@ struct ScreenState {
     // where the report screen left room for the stations' images [px] (StationSheetPass draws
     // them there), this frame; none when it shows the table or another screen
     std::optional<Rect> sheet_area;
+    // the exam screen's panel over the leg's view [px], this frame (none on the other screens)
+    std::optional<Rect> exam_panel;
 };
 
 // Draws the trainer's current screen into a frame of `extent` (ImGui's context current), the

@@ -26,6 +26,29 @@ TEST(OrbitCamera, TargetProjectsToTheCentreAndUpIsAnterior)
     EXPECT_LT(a.y, t.y);
 }
 
+// target_on_screen moves the whole image: the target lands there, a point beside it keeps its
+// offset from the target on screen, and depth is unchanged.
+TEST(OrbitCamera, TheTargetLandsWhereItIsAskedOnScreen)
+{
+    OrbitCamera c;
+    const glm::vec3 beside = c.target + glm::vec3(30, -20, 40);
+    const auto ndc = [&](const glm::vec3& p) {
+        glm::vec4 q = c.projection(1.2f) * c.view() * glm::vec4(p, 1.0f);
+        return glm::vec3(q) / q.w;
+    };
+    const glm::vec3 t0 = ndc(c.target), b0 = ndc(beside);
+    c.target_on_screen = glm::vec2(0.4f, -0.1f);
+    const glm::vec3 t1 = ndc(c.target), b1 = ndc(beside);
+    EXPECT_NEAR(t1.x, 0.4f, 1e-5f);
+    EXPECT_NEAR(t1.y, -0.1f, 1e-5f);
+    EXPECT_NEAR(b1.x - t1.x, b0.x - t0.x, 1e-5f);
+    EXPECT_NEAR(b1.y - t1.y, b0.y - t0.y, 1e-5f);
+    EXPECT_NEAR(t1.z, t0.z, 1e-6f);
+    EXPECT_NEAR(b1.z, b0.z, 1e-6f);
+    c.reset(c.target);  // the default view: at the centre again
+    EXPECT_EQ(c.target_on_screen, glm::vec2(0.0f));
+}
+
 TEST(OrbitCamera, OrbitAndZoomStayInRange)
 {
     OrbitCamera c;

@@ -16,11 +16,13 @@
 #include "trainer/guidance.hpp"
 #include "trainer/lesson.hpp"
 #include "trainer/trainer.hpp"
+#include "trainer/trainer_driver.hpp"
 
 namespace echosim {
 namespace {
 
 using trainer::Screen;
+using ScreenStateRect = trainer::ScreenState::Rect;
 
 ui::UiInput key(ui::Key k)
 {
@@ -215,6 +217,24 @@ TEST(TrainerScreens, AStartWaitsForItsCasesImagesAndBeginsOnceTheyAreReady)
     making.clear();
     EXPECT_EQ(t.tick(6.0, false), trainer::Action::none);
     EXPECT_EQ(t.screen(), Screen::start);
+}
+
+// The probe is shown in the middle of the leg's view right of the exam panel: at 1280 x 720 the
+// view is the frame left of the image (704 px here), the panel 8..408 px, so the middle of what is
+// left is at 556 px, (556 - 352) / 352 = 0.58 of the view's half width right of its centre.
+TEST(TrainerScreens, TheProbeShowsBesideTheExamPanelNotUnderIt)
+{
+    const echo::ImagePlane plane;
+    const VkExtent2D extent{1280, 720};
+    const float view_w = runner::scene_rect(extent, plane).width * 1280.0f;
+    const ScreenStateRect panel{8, 8, 408, 630};
+    const glm::vec2 at = trainer::probe_on_screen(panel, extent, plane);
+    EXPECT_NEAR(at.x, (0.5f * (408 + view_w) - 0.5f * view_w) / (0.5f * view_w), 1e-5f);
+    EXPECT_GT(at.x, 0.3f);
+    EXPECT_EQ(at.y, 0.0f);
+    EXPECT_EQ(trainer::probe_on_screen(std::nullopt, extent, plane), glm::vec2(0.0f));   // the start and report screens
+    const ScreenStateRect wide{8, 8, view_w - 20, 630};                                  // too little left beside it
+    EXPECT_EQ(trainer::probe_on_screen(wide, extent, plane), glm::vec2(0.0f));
 }
 
 TEST(TrainerScreens, ACallLandsOnTheStationExaminedAndFinishStoresTheSession)
