@@ -218,6 +218,7 @@ void TrainerWindow::configure(runner::RunnerConfig& config)
     // the image as the case asks for it, unless the command line says (run_window checked the name);
     // a user's volume without labels can only be sliced
     config.imaging = !args_.imaging.empty() ? std::optional(echo::parse_imaging(args_.imaging)) : c.imaging;
+    config.volume_pending = placeholder_;
     if (!volumes_.labels) config.imaging = echo::Imaging::interpolative;
     if (args_.kiosk) {
         config.window.fullscreen = true;

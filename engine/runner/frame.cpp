@@ -75,7 +75,9 @@ void SimulatorFrame::set(const DefaultScene& scene, const session::SessionView& 
     panel_.set_rect(panel);
     scene_pass_.set_area(scene_rect(extent, plane));
     // frozen, the image and its cue stay those of the frame it was frozen on
-    const ImageCue cue = echo_pass_.frozen() ? cue_pass_.cue() : image_cue(*state.echo, plane, echo_image_.volume_grid());
+    const ImageCue cue = volume_pending_      ? ImageCue::volume_pending
+                         : echo_pass_.frozen() ? cue_pass_.cue()
+                                               : image_cue(*state.echo, plane, echo_image_.volume_grid());
     cue_pass_.set(cue, panel, extent);
     for (SessionPass* p : following_) p->set(state, extent);
 }

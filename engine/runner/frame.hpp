@@ -10,7 +10,7 @@
 //     display copy, each declaring what it reads and writes: image/echo_image_gpu.hpp) from the
 //     same physics step the scene shows (runner/echo_image_pass.hpp);
 //   - image panel: that image on the right (render/image_panel_pass.hpp);
-//   - image cue: NO CONTACT or OUTSIDE THE MODELLED REGION over the panel when there is nothing to
+//   - image cue: NO CONTACT, OUTSIDE THE MODELLED REGION or IMAGES BEING MADE over the panel when there is nothing to
 //     image (runner/image_cue.hpp).
 // A configuration adds its own passes at the bracketed places (PassFactory): a B-mode pass filling
 // the panel's image at `image`, a UI drawn over everything at `overlay`; a pass that follows the
@@ -91,6 +91,8 @@ public:
     image::EchoImageGpu& echo_image() { return echo_image_; }
     // the cue the last set() chose
     ImageCue cue() const { return cue_pass_.cue(); }
+    // The volume stands in for one being made (RunnerConfig::volume_pending): the cue says so.
+    void set_volume_pending(bool pending) { volume_pending_ = pending; }
 
 private:
     render::ScenePass scene_pass_;
@@ -105,6 +107,7 @@ private:
     std::optional<gpu::FramePasses> passes_;
     gpu::CommandPool& commands_;     // the drawing thread's, for the leg's uploads when the window moves
     int drawn_window_ = 0;            // the exam window the scene pass holds (Session::window_serial)
+    bool volume_pending_ = false;
 };
 
 }  // namespace echosim::runner

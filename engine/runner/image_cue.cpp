@@ -13,6 +13,7 @@ CueText cue_text(ImageCue cue)
     switch (cue) {
     case ImageCue::no_contact: return {"NO CONTACT", "place the probe on the skin"};
     case ImageCue::outside_region: return {"OUTSIDE THE MODELLED REGION", "slide back over the thigh"};
+    case ImageCue::volume_pending: return {"IMAGES BEING MADE", "once; the start screen shows how far"};
     case ImageCue::none: break;
     }
     return {};
@@ -75,7 +76,7 @@ render::TargetRect cue_rect(const render::TargetRect& panel, VkExtent2D extent, 
 CuePass::CuePass(gpu::CommandPool& commands, VkFormat format)
     : nearest_(commands.context(), gpu::Filter::nearest), banner_pass_(commands.context(), format, {})
 {
-    for (ImageCue cue : {ImageCue::no_contact, ImageCue::outside_region}) {
+    for (ImageCue cue : {ImageCue::no_contact, ImageCue::outside_region, ImageCue::volume_pending}) {
         const io::RgbaImage drawn = cue_banner(cue);
         Banner& b = banners_[std::size_t(cue)];
         b.width = drawn.width;

@@ -6,7 +6,9 @@
 //   - OUTSIDE THE MODELLED REGION: the image plane lies mostly outside the echographic volume (less
 //     than half of a 5 x 5 grid of its pixel centres inside the volume's grid), so the slice would
 //     show little but the volume's border: a probe slid off the exam region.
-// The outside cue wins: off the volume the contact does not matter.
+//   - IMAGES BEING MADE: the runner holds a stand-in while the case's volume is being made
+//     (RunnerConfig::volume_pending: `echosim run`'s first window, app/trainer_window.hpp); it wins.
+// The outside cue wins over no contact: off the volume the contact does not matter.
 //
 // The cue is drawn by CuePass, a frame pass after the image panel: a banner (text drawn on the CPU
 // by io/bitmap_font, uploaded once at set-up) over the panel's middle, through the image panel's
@@ -26,7 +28,7 @@
 
 namespace echosim::runner {
 
-enum class ImageCue { none, no_contact, outside_region };
+enum class ImageCue { none, no_contact, outside_region, volume_pending };
 
 // The cue's two lines: the headline ("NO CONTACT", "OUTSIDE THE MODELLED REGION") and what to do.
 struct CueText {
@@ -65,7 +67,7 @@ private:
         gpu::Image image;
         std::uint32_t width = 0, height = 0;
     };
-    std::array<Banner, 3> banners_;  // by ImageCue; none's is empty
+    std::array<Banner, 4> banners_;  // by ImageCue; none's is empty
     gpu::Sampler nearest_;           // the glyphs' pixels as drawn
     render::ImagePanelPass banner_pass_;
     ImageCue cue_ = ImageCue::none;

@@ -56,6 +56,7 @@ Runner::Runner(RunnerConfig config) : config_((checked(config), std::move(config
         imaging_ = config_.imaging.value_or(generative_fits ? echo::Imaging::generative : echo::Imaging::interpolative);
         frame_ = std::make_unique<SimulatorFrame>(*ctx_, *commands_, presenter_->format(), *scene_, *config_.volume, config_.labels.get(),
                                                   config_.passes, imaging_);
+        frame_->set_volume_pending(config_.volume_pending);
     }
     for (const auto& o : config_.observers) o->on_attach(*this);
 }

@@ -143,6 +143,9 @@ struct RunnerConfig {
     // the echographic volume and its labels (null: none, the paper's linear deformation); needed
     // for any output
     std::shared_ptr<const io::Volume> volume, labels;
+    // `volume` stands in while the case's is being made: the image shows the IMAGES BEING MADE cue
+    // (runner/image_cue.hpp), whatever the probe does
+    bool volume_pending = false;
     // how the echographic image is made (echo::Imaging; generative needs the labels). Unset: as the
     // machine suits: generative on a GPU; interpolative on a CPU's Vulkan (lavapipe), where the
     // generative image halves the window's frame rate (bench/RESULTS.md), without labels, and for

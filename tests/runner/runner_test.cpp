@@ -393,6 +393,39 @@ TEST(Runner, ThePanelSaysNoContactOffTheSkinAndNothingWhilePressing)
     EXPECT_EQ(messages->load(), 0u);
 }
 
+// A runner whose volume stands in for one being made (`echosim run`'s first window) says so on the
+// image whatever the probe does: pressing on the skin, the cue stays IMAGES BEING MADE.
+TEST(Runner, AStandInVolumeSaysTheImagesAreBeingMade)
+{
+    const TestVolumes v = small_volume();
+    const scene::LegModel leg;
+    runner::ExamOptions o = small_exam(v);
+    o.extent = {480, 270};
+    o.duration_s = 1.0;
+    auto place = std::make_shared<PlaceProbe>();
+    place->rest = leg.probe_rest_pose(0.5f, 0.5f);
+    place->press_mm = 8.0;
+    o.input = place;
+    auto keep = std::make_shared<KeepFrame>();
+    o.observers.push_back(keep);
+    runner::RunnerConfig config = runner::exam_config(std::move(o));
+    config.volume_pending = true;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        runner::Runner r(std::move(config));
+        messages = r.validation_counter();
+        for (int i = 0; i < 30; ++i) ASSERT_TRUE(r.step());
+        EXPECT_GT(r.session().view().probe_force_N, 0.5);  // pressing: no other cue would show
+        EXPECT_EQ(r.frame()->cue(), runner::ImageCue::volume_pending);
+        const render::TargetRect panel = runner::echo_panel_rect({480, 270}, r.session().image_plane());
+        EXPECT_GT(amber_pixels(keep->last, panel), 200);
+        if (const char* keep_dir = std::getenv("ECHOSIM_RUNNER_FRAMES"))  // to look at
+            io::write_png(std::filesystem::path(keep_dir) / "h6_volume_pending.png", keep->last);
+    }
+    EXPECT_EQ(messages->load(), 0u);
+    EXPECT_STREQ(runner::cue_text(runner::ImageCue::volume_pending).headline, "IMAGES BEING MADE");
+}
+
 // The scanner's knobs: gain and focus step and stop at their ends; a focus is kept inside the image.
 TEST(ScannerControls, GainAndFocusStepWithinTheirRanges)
 {
