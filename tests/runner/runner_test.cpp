@@ -349,19 +349,31 @@ struct KeepFrame final : runner::Observer {
     }
 };
 
+// The small volume's exam at 480 x 270 for `seconds`, the probe placed by `place` (at its rest
+// pose pressed `press_mm`), every frame kept by `keep`.
+runner::ExamOptions kept_exam(const TestVolumes& v, double seconds, const Pose& rest, double press_mm, std::shared_ptr<PlaceProbe>& place,
+                              std::shared_ptr<KeepFrame>& keep)
+{
+    runner::ExamOptions o = small_exam(v);
+    o.extent = {480, 270};
+    o.duration_s = seconds;
+    place = std::make_shared<PlaceProbe>();
+    place->rest = rest;
+    place->press_mm = press_mm;
+    o.input = place;
+    keep = std::make_shared<KeepFrame>();
+    o.observers.push_back(keep);
+    return o;
+}
+
 TEST(Runner, ThePanelSaysNoContactOffTheSkinAndNothingWhilePressing)
 {
     const TestVolumes v = small_volume();
     const scene::LegModel leg;
-    runner::ExamOptions o = small_exam(v);
-    o.extent = {480, 270};
-    o.duration_s = 1.0;
-    auto place = std::make_shared<PlaceProbe>();
+    std::shared_ptr<PlaceProbe> place;
+    std::shared_ptr<KeepFrame> keep;
     const Pose rest = leg.probe_rest_pose(0.5f, 0.5f);
-    place->rest = pressed_along_beam(rest, -8.0);  // 8 mm above the skin
-    o.input = place;
-    auto keep = std::make_shared<KeepFrame>();
-    o.observers.push_back(keep);
+    runner::ExamOptions o = kept_exam(v, 1.0, pressed_along_beam(rest, -8.0), 0.0, place, keep);  // 8 mm above the skin
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     // ECHOSIM_RUNNER_FRAMES=DIR keeps the two frames to look at
     const char* keep_dir = std::getenv("ECHOSIM_RUNNER_FRAMES");
@@ -399,15 +411,9 @@ TEST(Runner, AStandInVolumeSaysTheImagesAreBeingMade)
 {
     const TestVolumes v = small_volume();
     const scene::LegModel leg;
-    runner::ExamOptions o = small_exam(v);
-    o.extent = {480, 270};
-    o.duration_s = 1.0;
-    auto place = std::make_shared<PlaceProbe>();
-    place->rest = leg.probe_rest_pose(0.5f, 0.5f);
-    place->press_mm = 8.0;
-    o.input = place;
-    auto keep = std::make_shared<KeepFrame>();
-    o.observers.push_back(keep);
+    std::shared_ptr<PlaceProbe> place;
+    std::shared_ptr<KeepFrame> keep;
+    runner::ExamOptions o = kept_exam(v, 1.0, leg.probe_rest_pose(0.5f, 0.5f), 8.0, place, keep);
     runner::RunnerConfig config = runner::exam_config(std::move(o));
     config.volume_pending = true;
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
@@ -458,15 +464,9 @@ TEST(Runner, AFrozenImageStaysWhileTheProbeMovesOn)
 {
     const TestVolumes v = small_volume();
     const scene::LegModel leg;
-    runner::ExamOptions o = small_exam(v);
-    o.extent = {480, 270};
-    o.duration_s = 2.0;
-    auto place = std::make_shared<PlaceProbe>();
-    place->rest = leg.probe_rest_pose(0.5f, 0.5f);
-    place->press_mm = 2.0;
-    o.input = place;
-    auto keep = std::make_shared<KeepFrame>();
-    o.observers.push_back(keep);
+    std::shared_ptr<PlaceProbe> place;
+    std::shared_ptr<KeepFrame> keep;
+    runner::ExamOptions o = kept_exam(v, 2.0, leg.probe_rest_pose(0.5f, 0.5f), 2.0, place, keep);
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
         runner::Runner r(runner::exam_config(std::move(o)));
