@@ -152,6 +152,7 @@ void Scorer::observe(const ExamSample& s)
     // the force held above the excessive limit at the station the probe is at (kExcessiveHoldS)
     for (std::size_t i = 0; i < stations_.size(); ++i) {
         Tracked& st = stations_[i];
+        if (at != i) st.run.clear();
         if (at != i || !(s.force_N > bands.excessive_force_N)) {
             st.above_since_s = -1;
             continue;
@@ -174,11 +175,19 @@ void Scorer::observe(const ExamSample& s)
             current_ = i;
             last_examined_ = i;
             if (g.angle_deg <= bands.transverse_deg && !st.reached) st.reached = true, st.reached_at_s = s.time_s;
-            if (s.force_N > st.peak_force_N) {
-                st.peak_force_N = s.force_N;
-                st.peak_at_s = s.time_s;
-                st.at_peak = g;
-                if (s.echo) st.deepest = *s.echo, st.deepest_depth_mm = s.image_depth_mm;
+            // the press held: the least force over the run's last kPressHeldS (the run's samples
+            // from the last one at or before that long ago)
+            st.run.emplace_back(s.time_s, s.force_N);
+            while (st.run.size() > 1 && st.run[1].first <= s.time_s - kPressHeldS + 1e-9) st.run.erase(st.run.begin());
+            if (s.time_s - st.run.front().first >= kPressHeldS - 1e-9) {
+                double held = s.force_N;
+                for (const auto& [time, force] : st.run) held = std::min(held, force);
+                if (held > st.peak_force_N) {
+                    st.peak_force_N = held;
+                    st.peak_at_s = s.time_s;
+                    st.at_peak = g;
+                    if (s.echo) st.deepest = *s.echo, st.deepest_depth_mm = s.image_depth_mm;
+                }
             }
             if (pressing && g.angle_deg > bands.transverse_deg && !st.oblique)
                 st.oblique = true, st.oblique_at_s = s.time_s, st.oblique_angle_deg = g.angle_deg;

@@ -5,8 +5,11 @@
 //     centre line, within kAlongToleranceMm of the station along the vein (where the beam's centre
 //     line passes nearest it), the plane within transverse_deg of transverse, the probe in contact;
 //     a probe within reach of two stations is at the nearer one;
-//   - pressed: the peak force while there, against the case's adequate and excessive bands, and the
-//     session's echo frame at that deepest press, kept to be imaged afterwards;
+//   - pressed: the deepest press while there: the highest force held for kPressHeldS (the least
+//     force over that long a run of samples at the station, so one sample's spike, a jab or the
+//     contact's ripple, is not a press the protocol asks for), against the case's adequate and
+//     excessive bands, and the session's echo frame at the end of that held press, kept to be
+//     imaged afterwards;
 //   - compression: the vein's interior (lumen and thrombus) and the artery's lumen in the deformed
 //     labels at the deepest press against the same plane at rest (measure_compression), so the walls
 //     meeting is measured, not guessed;
@@ -49,6 +52,12 @@ inline constexpr double kWallsMetRatio = 0.1;
 // at the deepest presses, bench/RESULTS.md "The contact's long sides"; a jolt of the hand) is not
 // what the protocol warns of. Four samples at 60 frames a second.
 inline constexpr double kExcessiveHoldS = 0.05;
+
+// A station's deepest press is the highest force held this long there [s]: the least force over a
+// run of samples at the station that spans it (kExcessiveHoldS's four samples at 60 frames a
+// second). A trainee's press held for the call passes; a spike above what the hand holds does not
+// raise the force judged, nor pick the image the compression is measured on.
+inline constexpr double kPressHeldS = 0.05;
 
 // One step as the scorer sees it: the session's view, reduced to plain values.
 struct ExamSample {
@@ -139,8 +148,11 @@ private:
     struct Tracked {
         bool reached = false;
         double reached_at_s = -1;
-        double peak_force_N = 0;
-        double peak_at_s = -1;
+        double peak_force_N = 0;  // the deepest press: the highest force held kPressHeldS
+        double peak_at_s = -1;    // when that held press ended
+        // the samples (time, force) of the run at the station now, back to kPressHeldS before the
+        // last (empty: not at the station)
+        std::vector<std::pair<double, double>> run;
         Geometry at_peak;
         std::optional<echo::EchoFrame> deepest;
         double deepest_depth_mm = kLinearProbe.image_depth_mm;

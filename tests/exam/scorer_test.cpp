@@ -63,6 +63,11 @@ double press(Scorer& scorer, const Pose& pose, double peak, double t0, double im
     return t0 + 2.0;
 }
 
+// The deepest press press() makes: the highest force held kPressHeldS, over samples 0.02 s apart
+// on its triangle (8 N at its top): the least of the four samples that span 0.05 s round the top
+// (two 0.02 s steps down from it), 8 * 48 / 50.
+constexpr double kHeldOf8 = 8.0 * 48 / 50;
+
 std::vector<ErrorKind> kinds(const ExamReport& r)
 {
     std::vector<ErrorKind> k;
@@ -83,7 +88,7 @@ TEST(Scorer, CorrectExamHasNoErrorsAndFindsTheClot)
     EXPECT_TRUE(r.errors.empty()) << error_name(r.errors.front().kind) << ": " << r.errors.front().detail;
     ASSERT_EQ(r.stations.size(), 2u);
     EXPECT_TRUE(r.stations[0].reached && r.stations[1].reached);
-    EXPECT_NEAR(r.stations[0].peak_force_N, 8.0, 1e-9);
+    EXPECT_NEAR(r.stations[0].peak_force_N, kHeldOf8, 1e-9);
     EXPECT_DOUBLE_EQ(r.score, 1.0);
     EXPECT_TRUE(r.passed);
     EXPECT_NE(r.conclusion.find("FV 12"), std::string::npos) << r.conclusion;
@@ -140,6 +145,33 @@ TEST(Scorer, AStationsReportImageHoldsTheVeinsLumenAtRest)
     press(s, at(0, -100), 8, 0, 60.0);
     press(s, at(0, -100), 4, 2.0, 40.0);  // a lighter press later, with a shallower image
     EXPECT_DOUBLE_EQ(s.deepest_image_depth_mm(0), 60.0);
+}
+
+// The deepest press is one held (kPressHeldS): a light press with one sample's jab far above it
+// (a spike of the hand, or of the contact) is judged at the force held, with the image of the held
+// press; a press held at the jab's force is judged at it.
+TEST(Scorer, AJabIsNotTheDeepestPress)
+{
+    Scorer s(scenario(), {station("FV 10", -100)});
+    echo::EchoFrame frame;
+    frame.face = at(0, -100);
+    const auto sample = [&](double t, double force) {
+        frame.time_s = t;
+        s.observe({t, frame.face, force, &frame, kLinearProbe.image_depth_mm});
+    };
+    for (int i = 0; i <= 60; ++i) sample(i / 60.0, i == 30 ? 12.0 : 3.0);  // 3 N held a second, 12 N at 0.5 s
+    s.call(1.0, Call::compressible);
+    ExamReport r = finish(s);
+    EXPECT_NEAR(r.stations[0].peak_force_N, 3.0, 1e-12);
+    EXPECT_EQ(kinds(r), std::vector<ErrorKind>{ErrorKind::too_little_pressure});
+    ASSERT_TRUE(s.deepest_frame(0));
+    EXPECT_LT(s.deepest_frame(0)->time_s, 0.5);  // the held press's image, at its first 0.05 s
+    // held: 12 N for four samples (0.05 s) is the press judged
+    for (int i = 61; i <= 64; ++i) sample(i / 60.0, 12.0);
+    r = finish(s);
+    EXPECT_NEAR(r.stations[0].peak_force_N, 12.0, 1e-12);
+    EXPECT_NEAR(s.deepest_frame(0)->time_s, 64 / 60.0, 1e-12);
+    EXPECT_TRUE(r.errors.empty()) << error_name(r.errors.front().kind);
 }
 
 TEST(Scorer, TooLittlePressureOnly)
@@ -249,7 +281,7 @@ TEST(Scorer, APressOverASlopingVeinIsScoredAtItsOwnStation)
     s.call(press(s, over, 8, 0), Call::compressible);
     const ExamReport r = finish(s);
     EXPECT_TRUE(r.stations[0].reached);
-    EXPECT_NEAR(r.stations[0].peak_force_N, 8, 1e-9);
+    EXPECT_NEAR(r.stations[0].peak_force_N, kHeldOf8, 1e-9);
     EXPECT_EQ(r.stations[0].call, Call::compressible);
     EXPECT_FALSE(r.stations[1].reached);
     EXPECT_EQ(r.stations[1].peak_force_N, 0);
