@@ -247,9 +247,10 @@ TEST(TrainerScreens, ACallLandsOnTheStationExaminedAndFinishStoresTheSession)
     t.start(0);
     const exam::StationTruth& st = t.scorer().truth()[0];
     EXPECT_EQ(t.target(), std::optional<std::size_t>(0));
-    // pressed at the first station at 12 N (in the 8..16 N band), then called
+    // pressed at the first station at 12 N (in the 8..16 N band) and held (exam::kPressHeldS: four
+    // samples at 60 a second), then called
     Pose pressed = pressed_along_beam(st.ideal_probe, 10);
-    t.observe({0.5, pressed, 12.0, nullptr});
+    for (int i = 0; i <= 3; ++i) t.observe({0.5 + i / 60.0, pressed, 12.0, nullptr});
     EXPECT_EQ(t.scorer().current_station(), std::optional<std::size_t>(0));
     EXPECT_FALSE(t.station_done(0));
     // a letter typed into a text field is no call
