@@ -114,7 +114,12 @@ void VolumePreparer::work()
             job = queue_.front();
             queue_.pop_front();
             lock.unlock();
-            const bool cached = cached_(*job);
+            bool cached = false;
+            try {
+                cached = cached_(*job);
+            } catch (const std::exception&) {
+                // (no cache folder: the making below says why, kept as the case's failure)
+            }
             lock.lock();
             if (cached) {
                 ++background_done_;

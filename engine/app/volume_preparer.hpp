@@ -38,7 +38,8 @@ public:
     using Progress = std::function<void(const std::string& stage, double done)>;
     // Makes or reads a case's volumes (exam_volume, cached); throws on failure.
     using Load = std::function<VolumePair(const exam::Scenario& c, const Progress& progress)>;
-    // Whether a case's volumes are in the cache already (also_make skips those).
+    // Whether a case's volumes are in the cache already (also_make skips those); one that throws
+    // counts as not cached.
     using Cached = std::function<bool(const exam::Scenario& c)>;
 
     VolumePreparer(Load load, Cached cached, int nice = 10);

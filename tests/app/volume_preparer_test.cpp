@@ -150,6 +150,18 @@ TEST(VolumePreparer, AFailureIsKeptForItsCaseAndTheOthersGoOn)
     EXPECT_EQ(fake.calls.load(), 2);
 }
 
+// No cache folder ($HOME and $XDG_CACHE_HOME unset): the cache cannot be asked, a background case
+// is made all the same, and its failure (the making's own) is kept, never thrown on the worker.
+TEST(VolumePreparer, ACacheThatCannotBeAskedIsNoCache)
+{
+    FakeLoad fake;
+    fake.failing = {"no-home"};
+    VolumePreparer p(fake.load(), [](const exam::Scenario&) -> bool { throw std::runtime_error("no cache folder"); }, 0);
+    p.also_make({named("no-home"), named("fine")});
+    ASSERT_TRUE(eventually([&] { return p.made().first == 1 && p.status("no-home").state == VolumePreparer::State::failed; }));
+    EXPECT_EQ(fake.finished.load(), 1);
+}
+
 TEST(VolumePreparer, TheEndStopsAMakingUnderWay)
 {
     FakeLoad fake;
