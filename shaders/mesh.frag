@@ -26,5 +26,5 @@ void main()
         vec4 g = frame.gel_from_world * vec4(in_world, 1.0);
         gloss *= 1.0 - smoothstep(0.55, 1.0, length(g.xz));
     }
-    out_color = vec4(for_target(shade(frame, n, in_world, in_color, gloss)), 1.0);
+    out_color = vec4(for_target(shade(frame, n, in_world, in_color, gloss)), draw.material.y > 0.0 ? draw.material.y : 1.0);
 }

@@ -34,6 +34,8 @@ struct DrawPush {
     // x: 1 where the glossiness is the gel's, only within the gel's ellipse around the probe
     // (FrameUniforms::gel_from_world) and fading out at its rim, so the skin around it is the
     // matte skin of the rest of the leg; 0: glossy all over (the probe)
+    // y: the opacity of a see-through draw (the probe's ghost where the leg or the table hides it:
+    // render/scene_pass.hpp); 0: opaque
     vec4 material;
 };
 

@@ -53,8 +53,8 @@ VkPipeline create_graphics_pipeline(VkDevice dev, VkPipelineLayout layout, const
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     const bool has_depth = desc.depth_format != VK_FORMAT_UNDEFINED;
     depth.depthTestEnable = has_depth;
-    depth.depthWriteEnable = has_depth;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    depth.depthWriteEnable = has_depth && !desc.behind;
+    depth.depthCompareOp = desc.behind ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
     VkPipelineColorBlendAttachmentState blend_attachment{};  // opaque unless desc.blend
     blend_attachment.colorWriteMask =
         VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;

@@ -21,6 +21,9 @@ struct GraphicsPipelineDesc {
     VkFormat color_format = VK_FORMAT_UNDEFINED;
     VkFormat depth_format = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment, no depth test
     bool blend = false;  // "over" by the fragment's alpha (see-through overlays), else opaque
+    // the depth test passes only behind what is drawn already (GREATER), and writes no depth: what
+    // lies hidden is drawn over what hides it (with blend: seen through it)
+    bool behind = false;
     // both shaders' boolean specialization constants, constant_id 0, 1, ... in order (a constant a
     // stage does not declare is ignored there)
     std::span<const VkBool32> constants;

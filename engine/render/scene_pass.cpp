@@ -55,7 +55,10 @@ ScenePass::ScenePass(const gpu::Context& ctx, gpu::CommandPool& uploads, VkForma
                   [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, false); }),
       pixel_lit_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)},
                  "mesh (lit per pixel)",
-                 [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, true); })
+                 [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, true); }),
+      probe_ghost_(ctx.device(), descriptors_.layout(), {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawPush)},
+                   "mesh (the probe's ghost)",
+                   [&](VkPipelineLayout layout) { return create_mesh_pipeline(ctx.device(), layout, color_format, kDepthFormat, true, true); })
 {
     probe_.vertices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.vertices)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     probe_.indices = upload_buffer(uploads, bytes_of(std::span(meshes.probe.indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
@@ -99,7 +102,7 @@ void ScenePass::replace_leg(gpu::CommandPool& uploads, const scene::Mesh& static
 ScenePass::~ScenePass() { ctx_.wait_idle(); }
 
 VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
-                                           bool lit_per_pixel)
+                                           bool lit_per_pixel, bool ghost)
 {
     // LIT_PER_PIXEL and TARGET_ENCODES, shaders/mesh_lighting.glsl
     const std::array<VkBool32, 2> constants{lit_per_pixel ? VK_TRUE : VK_FALSE, gpu::is_srgb(color_format) ? VK_TRUE : VK_FALSE};
@@ -122,6 +125,8 @@ VkPipeline ScenePass::create_mesh_pipeline(VkDevice dev, VkPipelineLayout layout
     desc.color_format = color_format;
     desc.depth_format = depth_format;
     desc.constants = constants;
+    desc.blend = ghost;
+    desc.behind = ghost;
     return create_graphics_pipeline(dev, layout, desc);
 }
 
@@ -140,9 +145,9 @@ glm::mat4 gel_from_world(const FrameView& view)
 }  // namespace
 
 void ScenePass::draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
-                     const glm::mat4& model, const glm::vec4& tint, bool gel)
+                     const glm::mat4& model, const glm::vec4& tint, bool gel, float opacity)
 {
-    const DrawPush push{model, tint, glm::vec4(gel ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f)};
+    const DrawPush push{model, tint, glm::vec4(gel ? 1.0f : 0.0f, opacity, 0.0f, 0.0f)};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
     vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
     const VkDeviceSize offset = 0;
@@ -241,9 +246,14 @@ void ScenePass::record(const gpu::PassContext& pass)
     // the patch carries ultrasound gel: same skin, a little glossier
     draw(cmd, pixel_lit_, slot.patch_vertices.handle(), patch_indices_.handle(), patch_index_count_, identity,
          glm::vec4(1.0f, 1.0f, 1.0f, 0.35f), true);
-    if (view.show_probe)
+    if (view.show_probe) {
         draw(cmd, pixel_lit_, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
              glm::vec4(1.0f, 1.0f, 1.0f, 0.55f));
+        // where the leg or the table hides it, the probe seen through them: a trainee at the
+        // popliteal fossa (under the knee, on the table) still sees where the probe is
+        draw(cmd, probe_ghost_, probe_.vertices.handle(), probe_.indices.handle(), probe_.index_count, view.probe_to_world,
+             glm::vec4(1.0f, 1.0f, 1.0f, 0.55f), false, kProbeGhostOpacity);
+    }
     vkCmdEndRendering(cmd);
 }
 

@@ -88,10 +88,12 @@ private:
     };
 
     void upload_leg(gpu::CommandPool& uploads, const scene::Mesh& static_mesh, const scene::Mesh& patch_rest);
+    // `ghost`: the see-through pipeline that draws what lies behind what is drawn (blended, no depth
+    // written), for the probe's ghost
     static VkPipeline create_mesh_pipeline(VkDevice device, VkPipelineLayout layout, VkFormat color_format, VkFormat depth_format,
-                                           bool lit_per_pixel);
+                                           bool lit_per_pixel, bool ghost = false);
     void draw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, VkBuffer vertices, VkBuffer indices, std::uint32_t index_count,
-              const glm::mat4& model, const glm::vec4& tint, bool gel = false);
+              const glm::mat4& model, const glm::vec4& tint, bool gel = false, float opacity = 0.0f);
 
     const gpu::Context& ctx_;
     VkFormat color_format_;
@@ -100,6 +102,10 @@ private:
     // on descriptors_' layout, declared after it: the one lights the dense matte meshes per
     // vertex, the other the glossy ones per pixel (shaders/mesh_lighting.glsl)
     gpu::Pipeline vertex_lit_, pixel_lit_;
+    // the probe where the leg or the table hides it (the popliteal fossa's probe lies under the
+    // knee), drawn see-through over what hides it at kProbeGhostOpacity
+    gpu::Pipeline probe_ghost_;
+    static constexpr float kProbeGhostOpacity = 0.45f;
     GpuMesh static_mesh_, probe_;
     gpu::Buffer patch_indices_;
     std::uint32_t patch_index_count_ = 0;

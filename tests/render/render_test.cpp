@@ -1,11 +1,13 @@
 // Render tests: headless frames of the default scene on lavapipe, against a reference PNG and
 // against what the scene must show. Regenerate the references with scripts/update-references.
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <gtest/gtest.h>
 
@@ -116,6 +118,36 @@ TEST_F(SceneRender, ProbeIsDrawnWhereItsPoseSays)
     const auto [all, near] = changes(with, without, at, 60.0f);
     EXPECT_GT(all, 150);
     EXPECT_GT(double(near) / all, 0.95) << "the probe was drawn away from its pose";
+}
+
+// The probe hidden under the table (as the popliteal fossa's lies under the knee) is seen through
+// it: its ghost (ScenePass::kProbeGhostOpacity) changes the pixels where it lies behind, each of
+// them a blend, not the probe drawn over the table opaque.
+TEST_F(SceneRender, AProbeHiddenUnderTheTableIsSeenThroughIt)
+{
+    render::FrameView view = scene_.frame_view();
+    // 300 mm posterior (+y: down, into the table on which the patient lies), the pose otherwise the same
+    view.probe_to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0, 300, 0)) * view.probe_to_world;
+    const auto with = draw(view);
+    view.show_probe = false;
+    const auto without = draw(view);
+    const glm::vec2 at = project(glm::vec3(view.probe_to_world * glm::vec4(0, -60, 0, 1)));
+    const auto [all, near] = changes(with, without, at, 80.0f);
+    EXPECT_GT(all, 150);
+    EXPECT_GT(double(near) / all, 0.95) << "the ghost was drawn away from the probe's pose";
+    // see-through: no changed pixel is as far from the table's as an opaque probe would put it
+    view.probe_to_world = scene_.frame_view().probe_to_world;
+    int opaque_max = 0, ghost_max = 0;
+    for (std::uint32_t y = 0; y < with.height; ++y)
+        for (std::uint32_t x = 0; x < with.width; ++x)
+            for (int c = 0; c < 3; ++c) ghost_max = std::max(ghost_max, std::abs(int(with.at(x, y)[c]) - int(without.at(x, y)[c])));
+    const auto shown = draw(scene_.frame_view());
+    view.show_probe = false;
+    const auto bare = draw(view);
+    for (std::uint32_t y = 0; y < shown.height; ++y)
+        for (std::uint32_t x = 0; x < shown.width; ++x)
+            for (int c = 0; c < 3; ++c) opaque_max = std::max(opaque_max, std::abs(int(shown.at(x, y)[c]) - int(bare.at(x, y)[c])));
+    EXPECT_LT(ghost_max, opaque_max);
 }
 
 TEST_F(SceneRender, PatchDeformationIsDrawn)
