@@ -7,6 +7,10 @@
 //       difficulty               calls C / N; guidance to the        the session stored in the
 //                                next station; the force gauge       records; earlier sessions listed
 //
+// A start asked for while the chosen case's images are still being made (the run's first minute on
+// a new machine, a kiosk's other cases) waits on the start screen and begins once they are ready
+// (set_readiness, request_start).
+//
 // The idle timeout (no input, the probe still, for TrainerOptions::idle_timeout_s of session time):
 // during an exam the session is scored and stored as it stands, and the trainer returns to the start
 // screen (a kiosk left by its trainee is ready for the next); on the report screen it returns too.
@@ -59,7 +63,8 @@ struct StartForm {
 enum class Action { none, started, finished, quit };
 
 // Whether a case's volumes are ready for a lesson (its images: made once, then cached), and if not,
-// the line the start screen shows instead ("The case's images are being made ...: 43 %").
+// the line the start screen shows beside Start ("This case's images are being made, once (then
+// kept): imaging the course (1060 frames).") and how far the making is (its progress bar).
 struct CaseReadiness {
     bool ready = true;
     std::string line;
