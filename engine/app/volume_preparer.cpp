@@ -131,7 +131,7 @@ void VolumePreparer::work()
         done_ = 0;
         lock.unlock();
         VolumePair pair;
-        std::string error;
+        std::optional<std::string> error;
         try {
             pair = load_(*job, [this](const std::string& stage, double done) { report(stage, done); });
         } catch (const Stopped&) {
@@ -143,11 +143,14 @@ void VolumePreparer::work()
             continue;
         } catch (const std::exception& e) {
             error = e.what();
+        } catch (...) {
+            error = "an unknown error";
         }
+        if (!error && !pair.volume) error = "no volume was made";
         lock.lock();
         current_id_.clear();
-        if (!error.empty()) {
-            failed_[job->id] = error;
+        if (error) {
+            failed_[job->id] = *error;
         } else if (hold) {
             held_id_ = job->id;
             held_ = std::move(pair);
