@@ -285,10 +285,10 @@ void TrainerWindow::read_ui()
     // the making waits while a lesson runs (its cores are the exam's); on the start screen it
     // makes the case chosen there, and the first runner gives way once that case is ready
     const bool start = trainer_->screen() == trainer::Screen::start;
+    const exam::Scenario& chosen = trainer_->chosen_case();
     preparer_->pause(trainer_->screen() == trainer::Screen::exam);
-    if (start) preparer_->want(trainer_->chosen_case());
-    if (placeholder_ && start && !driver_->case_wanted() && trainer_->readiness(trainer_->chosen_case()).ready)
-        driver_->want_case(trainer_->chosen_case().id);
+    if (start) preparer_->want(chosen);
+    if (placeholder_ && start && !driver_->case_wanted() && trainer_->readiness(chosen).ready) driver_->want_case(chosen.id);
     // while a volume is made, the start screen is drawn at most kMakingFrameRate a second: on
     // lavapipe its frames take the cores the making needs (a case's volume behind a 1080p start
     // screen drawn at 32 frames/s took 49 s, alone 27 s; bench/RESULTS.md)

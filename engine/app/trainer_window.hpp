@@ -11,7 +11,7 @@
 //     while the window runs: the chosen case's first (the start screen says how far it is, and a
 //     start asked for begins the lesson once it is ready), then, in the kiosk, every other case's;
 //     the first runner, when the chosen case's volume is not cached, holds no case's (an empty
-//     volume: the image says it is outside the model) and gives way to one that holds it once made;
+//     volume: the image says IMAGES BEING MADE) and gives way to one that holds it once made;
 //   - the UI's input from the window (UiWindowInput): GLFW polled for the mouse (sticky buttons: a
 //     click between two frames is kept) and the keys, typed characters from GLFW's character
 //     callback; fed to the trainer's driver;

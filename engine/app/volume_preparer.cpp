@@ -90,7 +90,7 @@ void VolumePreparer::report(const std::string& stage, double done)
     if (stop_) throw Stopped{};
     // another case is wanted now (the trainee chose it): it goes first; a background case is
     // made again later, a case no longer wanted only when wanted again
-    if (wanted_ && wanted_->id != current_id_ && wanted_needed()) throw Preempted{};
+    if (wanted_needed() && wanted_->id != current_id_) throw Preempted{};
 }
 
 bool VolumePreparer::wanted_needed() const { return wanted_ && wanted_->id != held_id_ && !failed_.count(wanted_->id); }

@@ -59,9 +59,10 @@ glm::vec2 probe_on_screen(const std::optional<ScreenState::Rect>& panel, VkExten
     if (!panel || extent.width == 0) return glm::vec2(0.0f);
     const float view_w = runner::scene_rect(extent, plane).width * float(extent.width);
     const float left = std::min(panel->x1, view_w);
-    // the middle of the view's part right of the panel, unless too little of it is left
+    // the middle of the view's part right of the panel, unless too little of it is left: that
+    // middle lies left / 2 px right of the view's, left / view_w of its half width
     if (view_w - left < 0.25f * view_w) return glm::vec2(0.0f);
-    return glm::vec2((0.5f * (left + view_w) - 0.5f * view_w) / (0.5f * view_w), 0.0f);
+    return glm::vec2(left / view_w, 0.0f);
 }
 
 echo::ImagePlane TrainerDriver::image_plane()
