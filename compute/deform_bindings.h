@@ -82,6 +82,9 @@ namespace echosim::kernels {
 #define DEFORM_SPREAD 0.7f
 #define DEFORM_SPREAD_MAX_MM 3.0f
 #define DEFORM_MEETING 0.5f
+// the width across the beam over which a closing lumen's gain fades out at its edges (deform_column.h,
+// deform_gain_band): a Gaussian's standard deviation [mm]
+#define DEFORM_GAIN_BLUR_MM 0.6f
 
 // The two passes, each a dispatch of its own pipeline (the kernel's specialization constant 0, bit 0):
 #define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)

@@ -129,6 +129,7 @@ void deform_column_solve(uint c, DeformParams p)
     //    springs are anchored there: what lies below it neither moves nor feels the probe, so the
     //    tissue above takes up the whole shift and the bone stays where it is
     bool anchored = false;
+    vec2 gained = vec2(0.0f);  // the first and last lumen steps with a gain, plus one ((0, 0): none), for walk 6
     for (uint k = 0u; k < steps; ++k) {
         float depth = (float(k) + 0.5f) * h;
         // the tissue at the step's quarters: a lumen in either makes it a lumen step, so where
@@ -152,6 +153,7 @@ void deform_column_solve(uint c, DeformParams p)
                                     : vec4(t.compliance * influence, t.max_strain, 0.0f, 0.0f);
         scratch_store(c, k, w);
         if (!is_lumen(w)) pressed += solid_strain(w.x, w.y, stress) * h;
+        if (is_lumen(w) && w.w != 0.0f) gained = vec2(gained.x == 0.0f ? float(k + 1u) : gained.x, float(k + 1u));
     }
 
     // 4. the column's two remainders. First, what the pressure leaves of the skin's shift (from
@@ -202,6 +204,57 @@ void deform_column_solve(uint c, DeformParams p)
         until = vec2(w.z >= DEFORM_MEETING ? 0.0f : until.x + h, is_rigid(w) ? 0.0f : until.y + h);
         walls_store(c, k - 1u, min(walls_load(c, k - 1u), until));
     }
+
+    // 6. where the column's lumens make a gain (walk 1), for the second pass's gain across the
+    //    beam (deform_gain_band), in the skin boundary's wall distances: nothing reads those after
+    //    this pass (the spread starts below the skin)
+    walls_store(c, 0u, gained);
+}
+
+// What the second pass needs to blend the gain of column c across the beam: the sound that crossed
+// a lumen before it closed spread sideways with the beam, so the posterior enhancement the recorded
+// volume holds under a vein fades out over its edges, and so must what its closing takes away (a
+// column's own gain cut it off at the lumen's last column: a line down the image from each end of
+// the closed vein). A Gaussian of DEFORM_GAIN_BLUR_MM, read at two columns a side about a standard
+// deviation apart (the stride), so it reaches as far at any column pitch.
+struct GainBand {
+    uvec4 at;      // the four neighbours read: two strides left, one left, one right, two right
+    uvec4 steps;   // their steps (0: outside the image)
+    vec4 weight;   // their weights (0: outside the image; the column's own is 1)
+    uvec2 steps_with_gain;  // the first and last steps where any of the five has a lumen with a gain ((0, 0): none), plus one
+};
+
+GainBand deform_gain_band(uint c, DeformParams p)
+{
+    GainBand b;
+    uint stride = uint(max(floor(DEFORM_GAIN_BLUR_MM / p.pixel_x_mm + 0.5f), 1.0f));
+    float d = float(stride) * p.pixel_x_mm / DEFORM_GAIN_BLUR_MM;
+    float one = exp2(-0.7213475f * d * d), two = exp2(-0.7213475f * 4.0f * d * d);  // exp(-d^2 / 2) at d and 2d
+    b.at = uvec4(c - min(c, 2u * stride), c - min(c, stride), c + stride, c + 2u * stride);
+    b.weight = vec4(c >= 2u * stride ? two : 0.0f, c >= stride ? one : 0.0f, c + stride < p.columns ? one : 0.0f,
+                    c + 2u * stride < p.columns ? two : 0.0f);
+    uvec2 band = uvec2(walls_load(c, 0u));  // deform_column_solve, walk 6
+    b.steps = uvec4(0u);
+    for (uint i = 0u; i < 4u; ++i) {
+        if (b.weight[i] == 0.0f) continue;
+        b.steps[i] = deform_steps(deform_profile(b.at[i]).x, p);
+        uvec2 theirs = uvec2(walls_load(b.at[i], 0u));
+        if (theirs.x > 0u) band = uvec2(band.x == 0u ? theirs.x : min(band.x, theirs.x), max(band.y, theirs.y));
+    }
+    b.steps_with_gain = band;
+    return b;
+}
+
+// The neighbours' gains [dB] through step k (deform_column_map keeps the sums: the gains above a
+// step are the sums before it), added to `sums`.
+vec4 deform_gain_step(GainBand b, uint k, vec4 sums)
+{
+    for (uint i = 0u; i < 4u; ++i) {
+        if (k >= b.steps[i]) continue;  // (outside the image, or past the column's last step)
+        vec4 w = scratch_load(b.at[i], k);
+        if (is_lumen(w)) sums[i] += w.w;
+    }
+    return sums;
 }
 
 // How far step boundary k of column c moved [mm], spread sideways: a lumen that closes drags the
@@ -260,6 +313,13 @@ void deform_column_map(uint c, DeformParams p)
         ++r;
     }
     float gain = 0.0f;
+    // the gain across the beam (deform_gain_band): the neighbours' gains above the step, summed
+    // from the first step where one has a gain to the last; elsewhere they are none, or the sums
+    // at the last. A column far from any changing lumen, the common case, keeps its own: none.
+    GainBand band = deform_gain_band(c, p);
+    bool across = (p.flags & DEFORM_PAPER_LINEAR) == 0u && band.steps_with_gain.x > 0u;
+    vec4 sums = vec4(0.0f);
+    float norm = 1.0f + dot(band.weight, vec4(1.0f));
     float top = skin_y + shift;  // where step k's upper boundary lies now
     float carried = 0.0f;  // how far the spread carries the lumen the walk is in past its column's place
     bool in_lumen = false;
@@ -275,17 +335,22 @@ void deform_column_map(uint c, DeformParams p)
         float below = in_lumen ? moved_load(c, k + 1u) + carried : deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
         float bottom = skin_y + float(k + 1u) * h + below;
         float length = bottom - top;
+        float shown = across ? (gain + dot(band.weight, sums)) / norm : gain;
         while (r < p.rows && pixel_y(r, p.pixel_y_mm) < bottom) {
             float f = length > 0.0f ? clamp((pixel_y(r, p.pixel_y_mm) - top) / length, 0.0f, 1.0f) : 0.0f;
-            map_store(r * p.columns + c, vec2(skin_y + (float(k) + f) * h, gain));
+            map_store(r * p.columns + c, vec2(skin_y + (float(k) + f) * h, shown));
             ++r;
         }
         top = max(top, bottom);  // a boundary the spread moved above the last one folds nothing back
         gain += is_lumen(w) ? w.w : 0.0f;
+        if (across && k + 1u >= band.steps_with_gain.x && k < band.steps_with_gain.y) sums = deform_gain_step(band, k, sums);
     }
+    // what the neighbours' lumens below the column's last walked step add
+    for (uint k = steps; across && k < band.steps_with_gain.y; ++k) sums = deform_gain_step(band, k, sums);
+    float shown = across ? (gain + dot(band.weight, sums)) / norm : gain;
     float rest = moved_load(c, steps);  // what the column could not take up moves the tissue below
     while (r < p.rows) {
-        map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - rest, gain));
+        map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - rest, shown));
         ++r;
     }
 }

@@ -20,6 +20,7 @@ using glm::vec4;
 using glm::mat4;
 using glm::uvec2;
 using glm::uvec3;
+using glm::uvec4;
 using glm::packHalf2x16;
 using glm::unpackHalf2x16;
 using glm::clamp;
