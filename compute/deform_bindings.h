@@ -32,7 +32,11 @@
 //     with the distance from the lumen (DEFORM_SPREAD), while the walls, the skin and the deep end
 //     stay where their own column puts them, so the walls still meet;
 //   - where a lumen closes, the sound no longer crosses that length of weakly attenuating blood: what
-//     lies below loses the posterior enhancement it had (a gain in dB carried down the column).
+//     lies below loses the posterior enhancement it had (a gain in dB carried down the column, and
+//     blended with the neighbouring columns' over the beam's width: the enhancement the volume
+//     holds fades out at the lumen's edges);
+//   - where a lumen's walls meet, their two echoes become one bright line (a gain at the meeting
+//     point).
 // Without labels the paper's linear deformation applies: one compliance, no decay with depth.
 //
 // Output, per pixel (column-major within a column walk, stored row-major): vec2(source y [mm] in the
@@ -85,6 +89,12 @@ namespace echosim::kernels {
 // the width across the beam over which a closing lumen's gain fades out at its edges (deform_column.h,
 // deform_gain_band): a Gaussian's standard deviation [mm]
 #define DEFORM_GAIN_BLUR_MM 0.6f
+// the coapted walls' echo where a lumen's walls meet (deform_column.h, deform_seam_db): its gain at
+// the meeting point [dB], how far either side it fades out [mm], and the closure from which a
+// lumen's walls touch (a vein that closes less still shows its lumen, dark, between them)
+#define DEFORM_SEAM_DB 12.0f
+#define DEFORM_SEAM_MM 0.3f
+#define DEFORM_SEAM_CLOSURE 0.9f
 
 // The two passes, each a dispatch of its own pipeline (the kernel's specialization constant 0, bit 0):
 #define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)

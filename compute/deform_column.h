@@ -298,6 +298,14 @@ float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
     return sum / weights;
 }
 
+// Where a lumen's walls meet, the sound meets two walls in one resolution cell: their echoes become
+// one bright line, the sign a sonographer reads as a vein compressed (the live image draws it from
+// the labels: bmode_coapted). The recorded volume holds each wall's echo faint and apart, with a
+// little blood left between them where they meet (deform_column_solve, walk 1), so the map adds the
+// line as a gain: DEFORM_SEAM_DB at the meeting point, fading to none DEFORM_SEAM_MM either side.
+// `d`: a pixel's distance from the meeting point [mm].
+float deform_seam_db(float d) { return DEFORM_SEAM_DB * max(1.0f - d / DEFORM_SEAM_MM, 0.0f); }
+
 // The second pass, once every column has been solved: the columns' displacements spread sideways
 // (deform_spread), then each pixel of the column mapped back to the depth it came from (inverse
 // warp: no holes), with the gain the closed lumens above it make.
@@ -323,8 +331,10 @@ void deform_column_map(uint c, DeformParams p)
     float top = skin_y + shift;  // where step k's upper boundary lies now
     float carried = 0.0f;  // how far the spread carries the lumen the walk is in past its column's place
     bool in_lumen = false;
+    float seam = -1e9f;  // where the walls of the last lumen the walk passed met (deform_seam_db) [mm]
+    vec4 w = steps > 0u ? scratch_load(c, 0u) : vec4(0.0f);
     for (uint k = 0u; k < steps && r < p.rows; ++k) {
-        vec4 w = scratch_load(c, k);
+        vec4 next = k + 1u < steps ? scratch_load(c, k + 1u) : vec4(0.0f);
         // the boundary below step k: (k + 1) h from the skin, (steps - k - 1) h from the deep end.
         // A lumen keeps the length its own column gives it (an artery its round shape, a vein what
         // the pressure leaves of it) and is carried whole, as far as the spread moved its upper
@@ -336,21 +346,27 @@ void deform_column_map(uint c, DeformParams p)
         float bottom = skin_y + float(k + 1u) * h + below;
         float length = bottom - top;
         float shown = across ? (gain + dot(band.weight, sums)) / norm : gain;
+        // a lumen whose walls meet begins below this step: their echo straddles its bottom
+        float meets = !is_lumen(w) && is_lumen(next) && next.z >= DEFORM_SEAM_CLOSURE ? max(top, bottom) : 1e9f;
         while (r < p.rows && pixel_y(r, p.pixel_y_mm) < bottom) {
-            float f = length > 0.0f ? clamp((pixel_y(r, p.pixel_y_mm) - top) / length, 0.0f, 1.0f) : 0.0f;
-            map_store(r * p.columns + c, vec2(skin_y + (float(k) + f) * h, shown));
+            float y = pixel_y(r, p.pixel_y_mm);
+            float f = length > 0.0f ? clamp((y - top) / length, 0.0f, 1.0f) : 0.0f;
+            map_store(r * p.columns + c, vec2(skin_y + (float(k) + f) * h, shown + deform_seam_db(min(abs(y - seam), abs(y - meets)))));
             ++r;
         }
         top = max(top, bottom);  // a boundary the spread moved above the last one folds nothing back
+        seam = meets < 1e8f ? meets : seam;
         gain += is_lumen(w) ? w.w : 0.0f;
         if (across && k + 1u >= band.steps_with_gain.x && k < band.steps_with_gain.y) sums = deform_gain_step(band, k, sums);
+        w = next;
     }
     // what the neighbours' lumens below the column's last walked step add
     for (uint k = steps; across && k < band.steps_with_gain.y; ++k) sums = deform_gain_step(band, k, sums);
     float shown = across ? (gain + dot(band.weight, sums)) / norm : gain;
     float rest = moved_load(c, steps);  // what the column could not take up moves the tissue below
     while (r < p.rows) {
-        map_store(r * p.columns + c, vec2(pixel_y(r, p.pixel_y_mm) - rest, shown));
+        float y = pixel_y(r, p.pixel_y_mm);
+        map_store(r * p.columns + c, vec2(y - rest, shown + deform_seam_db(abs(y - seam))));
         ++r;
     }
 }

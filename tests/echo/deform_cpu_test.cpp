@@ -1,8 +1,8 @@
 // The deform stage's model on the CPU twin (compute/deform_column.h run as C++): the stress under
 // the face against Newmark's closed form, the paper's linear deformation against its analytic map,
 // a probe at rest or lifted off the skin leaving the image as the volume has it, and a closing
-// vein's walls meeting while the tissue around it sinks without a seam, and what lies under it
-// losing its enhancement over the beam's width.
+// vein's walls meeting as one bright line while the tissue around it sinks without a seam, and
+// what lies under it losing its enhancement over the beam's width.
 #include "echo/deform_cpu.hpp"
 
 #include <algorithm>
@@ -172,8 +172,11 @@ struct PressedVein : Flat {
     static constexpr double kCentreY = 14, kRadius = 5;
     static constexpr float kSkinMm = 6, kPressureKpa = 30;  // the skin 6 mm above the face, pressed onto it
     std::vector<glm::vec2> map;
-    explicit PressedVein(const TissueTable& tissues, bool vein = true)
+    // `pressure_kpa`: the face's; `pixels`: the plane's columns (as many as the map has: the voxels') and rows
+    explicit PressedVein(const TissueTable& tissues, bool vein = true, float pressure_kpa = kPressureKpa, glm::uvec2 pixels = {80, 100})
     {
+        plane.columns = pixels.x;
+        plane.rows = pixels.y;
         io::Volume labels = grid;
         std::fill(labels.data.begin(), labels.data.end(), std::uint8_t(Tissue::muscle));
         for (std::size_t k = 0; k < labels.size[2]; ++k)
@@ -184,13 +187,14 @@ struct PressedVein : Flat {
                 }
         EchoFrame frame;
         frame.columns.assign(plane.columns, {-kSkinMm, kSkinMm});
-        frame.skin_pressure_kpa = kPressureKpa;
+        frame.skin_pressure_kpa = pressure_kpa;
         const KernelParams k = make_kernel_params(grid, plane, frame, {}, {}, true);
         map = deform_cpu(&labels, frame.columns, tissues, k.deform);
     }
     double x_of(std::uint32_t c) const { return (c + 0.5) * plane.pixel_x_mm() - 20; }
-    // where image pixel (c, r) comes from [mm]
+    // where image pixel (c, r) comes from [mm], and the gain it gets [dB]
     double source(std::uint32_t c, std::uint32_t r) const { return map[std::size_t(r) * plane.columns + c].x; }
+    double gain(std::uint32_t c, std::uint32_t r) const { return map[std::size_t(r) * plane.columns + c].y; }
 };
 
 TEST(DeformCpu, AClosingVeinsWallsMeet)
@@ -279,6 +283,38 @@ TEST(DeformCpu, TheGainUnderAClosedVeinFadesOutOverTheBeamsWidth)
             EXPECT_LT(std::abs(gain[c] - gain[c - 1]), 0.3 * full) << "at " << v.x_of(c) << " mm";
         }
     }
+}
+
+TEST(DeformCpu, AClosedVeinsWallsMeetAsOneBrightLine)
+{
+    const TissueTable tissues = tissue_mechanics({});
+    const PressedVein v(tissues, true, PressedVein::kPressureKpa, {80, 500});  // 0.1 mm rows
+    const double py = v.plane.pixel_y_mm();
+    // down the middle column: where the map's source jumps over the closed lumen, the walls meet
+    const std::uint32_t c = v.plane.columns / 2;
+    std::uint32_t meet = 0;
+    for (std::uint32_t r = 1; r < v.plane.rows && meet == 0; ++r)
+        if (v.source(c, r) - v.source(c, r - 1) > v.kRadius) meet = r;
+    ASSERT_GT(meet, 0u) << "the vein did not close";
+    // the walls' one echo: a gain at the meeting point (the pixel either side of it within 0.1 mm of
+    // it gets at least two thirds of the line's peak), over what the column has 1 mm above and below
+    const double line = std::max(v.gain(c, meet - 1), v.gain(c, meet)), above = v.gain(c, meet - 10), under = v.gain(c, meet + 10);
+    EXPECT_GT(line - std::max(above, under), 0.66 * DEFORM_SEAM_DB);
+    // and nowhere else in the column: half a millimetre or more from the meeting point, no row is
+    // brighter than the rows around it (the gain only falls, where closed lumens lie above)
+    for (std::uint32_t r = 1; r < v.plane.rows; ++r) {
+        if (std::abs((double(r) - double(meet) + 0.5) * py) < 0.5) continue;
+        EXPECT_LE(v.gain(c, r), v.gain(c, r - 1) + 1e-4) << "row " << r << ", the walls meet at row " << meet;
+    }
+
+    // a vein the probe closes only partly keeps its lumen between its walls, dark: no line
+    const PressedVein open(tissues, true, 5.0f, {80, 500});
+    int lumen_rows = 0;  // the rows of the middle column that show the lumen
+    for (std::uint32_t r = 0; r < open.plane.rows; ++r)
+        lumen_rows += std::abs(open.source(c, r) - open.kCentreY) < open.kRadius - 0.5 ? 1 : 0;
+    ASSERT_GT(lumen_rows * py, 1.0);                             // open by more than a millimetre
+    ASSERT_LT(lumen_rows * py, 0.9 * 2 * (open.kRadius - 0.5));  // yet pressed
+    for (std::uint32_t r = 1; r < open.plane.rows; ++r) EXPECT_LE(open.gain(c, r), open.gain(c, r - 1) + 1e-4) << "row " << r;
 }
 
 TEST(SliceCpu, BetweenMapColumnsTheSourceNeverFallsIntoAClosedLumen)
