@@ -155,8 +155,12 @@ TEST(DeformCpu, ABoneUnderTooLittleSoftTissueToTakeThePressStaysPut)
         double last = -1e9;
         for (std::uint32_t r = 0; r < f.plane.rows; ++r) {
             const double y = (r + 0.5) * f.plane.pixel_y_mm(), source = map[r * f.plane.columns + c].x;
-            if (y >= bone_top + 0.5) EXPECT_NEAR(source, y, 0.05) << "column " << c << ", row " << r;
-            if (y < bone_top - 0.5) EXPECT_TRUE(source >= skin && source < bone_top) << "column " << c << ", row " << r << ": " << source;
+            if (y >= bone_top + 0.5) {
+                EXPECT_NEAR(source, y, 0.05) << "column " << c << ", row " << r;
+            }
+            if (y < bone_top - 0.5) {
+                EXPECT_TRUE(source >= skin && source < bone_top) << "column " << c << ", row " << r << ": " << source;
+            }
             EXPECT_GE(source, last) << "column " << c << ", row " << r;  // nothing folded
             last = source;
         }
