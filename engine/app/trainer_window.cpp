@@ -196,12 +196,22 @@ VolumePair TrainerWindow::load_volumes(const gpu::ContextOptions& gpu, TerminalP
     return volumes_;
 }
 
+std::string TrainerWindow::made_line() const
+{
+    // (a kiosk's: only it makes every case, also_make)
+    const auto [made, all] = preparer_ ? preparer_->made() : std::pair<int, int>{0, 0};
+    if (all == 0 || made >= all) return {};
+    return "Images made for " + std::to_string(made) + " of " + std::to_string(all) +
+           " cases; the others are being made behind this screen, once (then kept).";
+}
+
 trainer::CaseReadiness TrainerWindow::readiness(const exam::Scenario& c) const
 {
-    if (!preparer_ || (c.id == loaded_ && volumes_.volume)) return {};
+    if (!preparer_) return {};
+    if (c.id == loaded_ && volumes_.volume) return {true, made_line()};
     const VolumePreparer::Status st = preparer_->status(c.id);
     switch (st.state) {
-    case VolumePreparer::State::ready: return {};
+    case VolumePreparer::State::ready: return {true, made_line()};
     case VolumePreparer::State::making:
         return {false, "This case's images are being made, once (then kept): " + st.stage + ".", st.done};
     case VolumePreparer::State::failed: return {false, "This case's images could not be made: " + st.error};
@@ -282,6 +292,7 @@ void TrainerWindow::read_ui()
     driver_->feed(typed_);
     log_screen();
     if (!preparer_) return;
+    log_made();
     // the making waits while a lesson runs (its cores are the exam's); on the start screen it
     // makes the case chosen there, and the first runner gives way once that case is ready
     const bool start = trainer_->screen() == trainer::Screen::start;
@@ -295,6 +306,17 @@ void TrainerWindow::read_ui()
     const auto now = std::chrono::steady_clock::now();
     if (start && preparer_->busy()) std::this_thread::sleep_until(last_ui_ + std::chrono::microseconds(long(1e6 / kMakingFrameRate)));
     last_ui_ = std::max(now, std::chrono::steady_clock::now());
+}
+
+void TrainerWindow::log_made()
+{
+    // a kiosk's log says how far the cases' images are, as the making goes (an instructor setting
+    // it up knows when every case starts at once)
+    const auto [made, all] = preparer_->made();
+    if (all == 0 || made == logged_made_) return;
+    logged_made_ = made;
+    std::printf("echosim run: the cases' images: %d of %d made%s\n", made, all, made < all ? ", the others being made behind the start screen" : "");
+    std::fflush(stdout);
 }
 
 void TrainerWindow::log_screen()

@@ -103,11 +103,15 @@ private:
     bool placeholder_ = false;    // the runner holds the empty volume (above)
     std::unique_ptr<VolumePreparer> preparer_;  // none with the user's own volume
     trainer::Screen logged_ = trainer::Screen::start;  // the screen the log last said
+    int logged_made_ = -1;                            // how many cases' images the log last said were made (kiosk)
     static constexpr double kMakingFrameRate = 10;    // the start screen's while a volume is made
     std::chrono::steady_clock::time_point last_ui_;   // the last read_ui's end
     void log_screen();
-    // what the start screen says of a case's volume (the preparer's status)
+    void log_made();
+    // what the start screen says of a case's volume (the preparer's status), and of the other
+    // cases' a kiosk makes behind it
     trainer::CaseReadiness readiness(const exam::Scenario& c) const;
+    std::string made_line() const;
 };
 
 }  // namespace echosim::app

@@ -64,7 +64,8 @@ enum class Action { none, started, finished, quit };
 
 // Whether a case's volumes are ready for a lesson (its images: made once, then cached), and if not,
 // the line the start screen shows beside Start ("This case's images are being made, once (then
-// kept): imaging the course (1060 frames).") and how far the making is (its progress bar).
+// kept): imaging the course (1060 frames).") and how far the making is (its progress bar). A ready
+// case's line, if any, says how far the other cases' are (a kiosk makes them all), shown quieter.
 struct CaseReadiness {
     bool ready = true;
     std::string line;

@@ -126,6 +126,12 @@ Action start_screen(Trainer& t, const session::SessionView& view, VkExtent2D ext
     const bool start = big_button(label, ImVec2(w * 0.4f, 56 * scale), fonts, ready.ready ? kGreen : kGrey);
     remember(state, "start");
     if (start) action = t.request_start(view.time_s);
+    if (ready.ready && !ready.line.empty()) {  // the other cases' images (a kiosk's)
+        ImGui::SameLine();
+        ImGui::PushTextWrapPos(w - 20 * scale);
+        ImGui::TextColored(kGrey, "%s", ready.line.c_str());
+        ImGui::PopTextWrapPos();
+    }
     if (!ready.ready) {  // beside the button: the screen's height is taken
         ImGui::SameLine();
         ImGui::BeginGroup();

@@ -71,5 +71,8 @@ grep -q "a lesson started: extended on case large-patient" "$log" || { echo "FAI
 runners=$(grep -c "the runner stepped" "$log")
 [[ $runners -ge 2 && $runners -le 3 ]] || { echo "FAIL: $runners runners, not the first, (the chosen case's,) the lesson's"; exit 1; }
 grep -q "echographic volume: none yet" "$log" || { echo "FAIL: the window waited for the case's volume"; exit 1; }
+# the kiosk makes every case's images behind the start screen, and its log says how far
+grep -Eq "the cases' images: [0-9]+ of [0-9]+ made, the others being made behind the start screen" "$log" ||
+  { echo "FAIL: the log does not say how far the cases' images are"; exit 1; }
 ! grep -qi "validation reported" "$log" || { echo "FAIL: validation messages"; exit 1; }
 echo "PASS"
