@@ -146,11 +146,15 @@ KERNEL_FN uint slice_warped_flags(float map_step) { return SLICE_WARPED | (slice
 // lie further apart than a smooth field puts neighbours (SLICE_MAP_JUMP_MM), they straddle a closed
 // lumen's meeting walls, one column mapping above it and the other below: a lerp would land in the
 // closed lumen and draw a dark seam where the walls meet, so the nearer column's source serves.
+// The gain is lerped there too: it belongs to the beam, which varies smoothly across (the deform
+// stage blends it so), and the walls' one echo (its gain) then runs from one column's meeting point
+// to the next's instead of stepping at the middle between them.
 #define SLICE_MAP_JUMP_MM 1.0f
 KERNEL_FN vec2 map_between(vec2 left, vec2 right, float right_weight)
 {
-    if (abs(left.x - right.x) > SLICE_MAP_JUMP_MM) return right_weight < 0.5f ? left : right;
-    return mix(left, right, right_weight);
+    vec2 lerped = mix(left, right, right_weight);
+    if (abs(left.x - right.x) > SLICE_MAP_JUMP_MM) return vec2(right_weight < 0.5f ? left.x : right.x, lerped.y);
+    return lerped;
 }
 
 // The runs, and the words, a row of the displayed image takes.
