@@ -211,8 +211,8 @@ LegModel::LegModel(const LegOptions& options)
         for (int j = 0; j < patch_.cols; ++j) patch_.rest.vertices.push_back(surface(i, j));
     for (int i = 0; i + 1 < patch_.rows; ++i)
         for (int j = 0; j + 1 < patch_.cols; ++j) {
-            const auto a = std::uint32_t(i * patch_.cols + j), b = a + 1, c = a + std::uint32_t(patch_.cols), d = c + 1;
-            for (std::uint32_t k : {a, c, d, a, d, b}) patch_.rest.indices.push_back(k);
+            const auto a = std::uint32_t(i * patch_.cols + j), b = a + 1, below = a + std::uint32_t(patch_.cols), d = below + 1;
+            for (std::uint32_t k : {a, below, d, a, d, b}) patch_.rest.indices.push_back(k);
         }
     orient_to_normals(patch_.rest);
 }
