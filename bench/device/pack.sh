@@ -3,7 +3,8 @@
 # lent GPU machine, which has none of our Debian packages: the Release binaries (stripped), every
 # shared library they load except glibc's own, the Vulkan loader, glvnd's dispatch libraries (the
 # NVIDIA driver's ICD, libGLX_nvidia, needs them, and that image has none) and the Khronos validation layer,
-# in one xz tarball (.gpu/echosim-gpu.tar.xz; unpacked it is over the tool's 64 MiB a call).
+# in one xz tarball (.gpu/echosim-gpu.tar.xz; unpacked it is over the tool's 64 MiB a call). No cached
+# volumes: there the GPU makes each case's in seconds.
 # Usage, in the repository root after a Release build in build/:
 #   bench/device/pack.sh && (device run, carry .gpu) bench/device/gpu_checks.sh
 set -euo pipefail
@@ -33,9 +34,6 @@ done
 cp -L /usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so "$stage/layers/"
 sed 's#"library_path": *"[^"]*"#"library_path": "./libVkLayer_khronos_validation.so"#' \
     /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json >"$stage/layers/VkLayer_khronos_validation.json"
-# the default case's volume, so the slice images need not rebuild it there (about a minute)
-cache=${XDG_CACHE_HOME:-$HOME/.cache}/echosim/volumes/healthy-0.3mm-v1
-if [ -d "$cache" ]; then mkdir -p "$stage/cache/echosim/volumes" && cp -r "$cache" "$stage/cache"/echosim/volumes/; fi
 rm -rf .gpu && mkdir .gpu
 tar -C "$stage" -cJf .gpu/echosim-gpu.tar.xz .
 du -sh .gpu/echosim-gpu.tar.xz
