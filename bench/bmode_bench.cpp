@@ -11,9 +11,12 @@
 // stage running each frame: "live" synthesises it from the labels where the pressed tissue rests
 // (generative imaging), "interpolative" slices the volume where the same map says (the slice's cost
 // does not depend on the grey levels, which are blank here). Labels voxelised at 0.2 mm over the
-// frame from 10 mm above the face.
+// frame from 10 mm above the face. Their rows also say where the GPU's time goes, stage by stage
+// (counters ms_<stage>: stage_breakdown).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -118,6 +121,38 @@ void frames(benchmark::State& state, const BmodeScene& s, echo::SweepImager& ima
     state.SetLabel("backend=" + backend + " mode=sweep");
 }
 
+// Where a frame's GPU time goes: after the timed frames, kTimedFrames more with timestamps between
+// the pipeline's stages (gpu/stage_timer.hpp), each stage's median as a counter "ms_<stage>"
+// ("ms_solve", "ms_live_scatter", ...) and their sum as "ms_stages" (the GPU's share of a frame;
+// the rest of 1/fps is recording, submission and the wait).
+template <class OneFrame>
+void stage_breakdown(benchmark::State& state, const gpu::Context& ctx, image::EchoImageGpu& pipeline, const OneFrame& one)
+{
+    constexpr int kTimedFrames = 31;
+    try {
+        pipeline.enable_stage_timing(ctx);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "echosim bench bmode: no stage times: %s\n", e.what());
+        return;
+    }
+    std::map<std::string, std::vector<double>> times;
+    for (int i = 0; i < kTimedFrames; ++i) {
+        one();
+        for (const auto& [name, ms] : pipeline.stage_times(0)) times[name].push_back(ms);
+    }
+    double sum = 0;
+    for (auto& [name, ms] : times) {
+        std::sort(ms.begin(), ms.end());
+        const double median = ms[ms.size() / 2];
+        std::string key = name.substr(name.find(": ") == std::string::npos ? 0 : name.find(": ") + 2);
+        for (char& ch : key)
+            if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+        state.counters["ms_" + key] = median;
+        sum += median;
+    }
+    state.counters["ms_stages"] = sum;
+}
+
 // Frames of the echographic image, each recorded and waited for, the heart's phase moving on.
 void live_frames(benchmark::State& state, Device& d, const LiveScene& s, echo::Imaging imaging)
 {
@@ -133,6 +168,7 @@ void live_frames(benchmark::State& state, Device& d, const LiveScene& s, echo::I
     };
     one();  // warm-up
     for (auto _ : state) one();
+    stage_breakdown(state, d.ctx, pipeline, one);
     state.counters["width"] = s.plane.columns;
     state.counters["height"] = s.plane.rows;
     state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);

@@ -116,6 +116,8 @@ void e2e_row(benchmark::State& state, const gpu::ContextOptions& gpu, runner::Ou
             }
             if (!r.step()) break;
         }
+        // which device drew it: the goals are lavapipe's (bench/goals.hpp, lavapipe_only)
+        state.counters["cpu_device"] = r.context() && r.context()->device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : 0;
         r.finish();
         state.counters["moves"] = double(watch->latency_ms.size());
         state.counters["frames_p50"] = quantile(watch->frames, 0.5);

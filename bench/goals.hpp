@@ -28,6 +28,9 @@ struct Goal {
     double scale = 1;
     std::string unit;
     std::string missing = "row not run";  // why, when the suite ran but the row is not there
+    // a goal of lavapipe's (of the 2-core machine): a row that says it ran on another device (its
+    // counter cpu_device 0, a real GPU's figure) does not measure it
+    bool lavapipe_only = false;
 };
 
 // DESIGN.md §5's goals that the suites measure, in its order.

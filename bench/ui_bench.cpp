@@ -131,6 +131,8 @@ void ui_row(benchmark::State& state, const gpu::ContextOptions& gpu, const app::
                 else if (int(into.size()) < kFrames) into.push_back(timer->last_ms);
             }
         }
+        // which device drew it: the goals are lavapipe's (bench/goals.hpp, lavapipe_only)
+        state.counters["cpu_device"] = r.context() && r.context()->device_type() == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : 0;
         r.finish();
         const double ui = median(with), bare = median(without);
         state.counters["frame_ms_ui"] = ui;

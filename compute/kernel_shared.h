@@ -41,8 +41,10 @@ using std::log2;
 inline float atan(float y, float x) { return std::atan2(y, x); }
 }  // namespace echosim::kernels
 #define KERNEL_FN inline
+#define KERNEL_PRECISE
 #else
 #define KERNEL_FN
+#define KERNEL_PRECISE precise
 #endif
 
 #ifdef __cplusplus
@@ -51,8 +53,19 @@ namespace echosim::kernels {
 
 // The image's pixel centres in the probe frame [mm] (echo::ImagePlane): column c at x, across a
 // width centred on the probe; row r at depth y from the face.
-KERNEL_FN float pixel_x(uint c, float pixel_x_mm, float width_mm) { return (float(c) + 0.5f) * pixel_x_mm - 0.5f * width_mm; }
-KERNEL_FN float pixel_y(uint r, float pixel_y_mm) { return (float(r) + 0.5f) * pixel_y_mm; }
+// `precise` (GLSL): an NVIDIA GPU fuses (c + 0.5) * pixel - width / 2 into one FMA otherwise, and a
+// pixel on a voxel's boundary (every other 0.1 mm pixel on a 0.2 mm label grid) then rounds to
+// another voxel than the CPU twin's, which is built without FMA contraction
+KERNEL_FN float pixel_x(uint c, float pixel_x_mm, float width_mm)
+{
+    KERNEL_PRECISE float x = (float(c) + 0.5f) * pixel_x_mm - 0.5f * width_mm;
+    return x;
+}
+KERNEL_FN float pixel_y(uint r, float pixel_y_mm)
+{
+    KERNEL_PRECISE float y = (float(r) + 0.5f) * pixel_y_mm;
+    return y;
+}
 
 #ifdef __cplusplus
 }  // namespace echosim::kernels

@@ -363,7 +363,9 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
     const gpu::StageAccess reader{kImage, to_transfer ? VK_PIPELINE_STAGE_2_COPY_BIT : VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                                   to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, final_layout};
     const gpu::Groups columns = gpu::Groups::cover(map_columns_, DEFORM_GROUP_SIZE);
+    if (timer_) timer_->begin(cmd, slot_index);
     stages_.record(cmd, active, images, std::span(&reader, 1), [&](std::size_t stage) {
+        if (timer_) timer_->mark(cmd, slot_index, stage);
         switch (stage) {
         case kSolve:  // the columns solved...
             slot.profile.write(std::as_bytes(std::span(profiles)));
@@ -409,6 +411,22 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
         }
         }
     });
+    if (timer_) timer_->end(cmd, slot_index);
+}
+
+void EchoImageGpu::enable_stage_timing(const gpu::Context& ctx)
+{
+    if (!timer_) timer_ = std::make_unique<gpu::StageTimer>(ctx, gpu::kFramesInFlight, stages_.size());
+}
+
+std::vector<std::pair<std::string, double>> EchoImageGpu::stage_times(int slot) const
+{
+    std::vector<std::pair<std::string, double>> times;
+    if (!timer_) return times;
+    const std::vector<double> ms = timer_->stage_ms(slot);
+    for (std::size_t i = 0; i < ms.size(); ++i)
+        if (ms[i] > 0) times.emplace_back(stages_.stage(i).name, ms[i]);
+    return times;
 }
 
 std::pair<double, double> EchoImageGpu::depth_range() const

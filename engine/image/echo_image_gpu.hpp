@@ -34,7 +34,9 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "echo/echo_frame.hpp"
 #include "echo/kernel_params.hpp"
@@ -44,6 +46,7 @@
 #include "gpu/frame.hpp"
 #include "gpu/resources.hpp"
 #include "gpu/stage_list.hpp"
+#include "gpu/stage_timer.hpp"
 #include "io/nrrd.hpp"
 
 namespace echosim::image {
@@ -144,6 +147,13 @@ public:
     // read-back is off.
     std::span<const std::uint8_t> readback(int slot) const;
 
+    // From now on, record() also writes GPU timestamps between its stages (gpu/stage_timer.hpp):
+    // the benchmarks' breakdown of a frame. Throws std::runtime_error where the queue keeps none.
+    void enable_stage_timing(const gpu::Context& ctx);
+    // Each stage the slot's last frame ran, by name ("deform: solve", ...), with its milliseconds
+    // on the GPU; valid once that frame's fence has signalled. Empty while timing is off.
+    std::vector<std::pair<std::string, double>> stage_times(int slot) const;
+
     // One frame, offscreen: recorded in slot 0, submitted through `pool` (the calling thread's),
     // waited for, and read back with the stages' outputs (the map only when the frame presses; the
     // labels with `want_labels` and a labelled volume). Not while a window's frames use slot 0.
@@ -181,6 +191,7 @@ private:
     gpu::StageList stages_;          // the frame's stages and what each reads and writes (echo_image_gpu.cpp)
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
+    std::unique_ptr<gpu::StageTimer> timer_;  // with enable_stage_timing()
     std::array<Slot, gpu::kFramesInFlight> slots_;
     // last, so destroyed first: they wait for the device before the resources they bind go
     gpu::ComputeKernel deform_, slice_;

@@ -46,6 +46,24 @@ TEST(BenchGoals, MetNotMetAndNotMeasured)
     EXPECT_EQ(lines[3].measured, "not measured (no GPU)");
 }
 
+// A goal of lavapipe's is not measured by a row that ran on a real GPU (its cpu_device counter 0),
+// is by one that ran on lavapipe (1), and by a row that does not say (results recorded before).
+TEST(BenchGoals, ALavapipeGoalIsNotMeasuredByAGpusRow)
+{
+    std::vector<Goal> goals = {kGoals[0]};
+    goals[0].lavapipe_only = true;
+    nlohmann::json r = report();
+    EXPECT_EQ(evaluate_goals(goals, r)[0].status, GoalStatus::met);
+    r[0]["results"][0]["cpu_device"] = 1;
+    EXPECT_EQ(evaluate_goals(goals, r)[0].status, GoalStatus::met);
+    r[0]["results"][0]["cpu_device"] = 0;
+    const GoalLine line = evaluate_goals(goals, r)[0];
+    EXPECT_EQ(line.status, GoalStatus::not_measured);
+    EXPECT_EQ(line.measured, "not measured (ran on a GPU, not lavapipe)");
+    goals[0].lavapipe_only = false;  // a goal of any device's reads it
+    EXPECT_EQ(evaluate_goals(goals, r)[0].status, GoalStatus::met);
+}
+
 TEST(BenchGoals, TheBoundaryCountsAsMet)
 {
     nlohmann::json r = report();
