@@ -3,7 +3,7 @@
 // and 0.1 mm voxels (bench/slice_scene.hpp), on lavapipe, on the CPU twin, and on a GPU when one is
 // present. A GPU frame is recorded, submitted and waited for, with nothing read back: what a live
 // frame costs. The "slice-only" rows time the slice kernel alone (the pressed frame's warped
-// sampling), the "deform-only" rows the deform stage's two dispatches alone, so the rest of the
+// sampling), the "deform-only" rows the deform stage's dispatches alone, so the rest of the
 // frame's cost is post and the copy into the displayed image.
 #include <benchmark/benchmark.h>
 

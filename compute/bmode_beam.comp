@@ -17,10 +17,21 @@ void main()
     const uint base = f * k.rows * k.columns + c;
     float transmitted = 1.0;
     uint above = 0u;
-    for (uint r = 0u; r < k.rows; ++r) {
-        const int at = int(base + r * k.columns);
-        const uint t = texelFetch(labels, at).r;
-        beam[at] = bmode_beam_step(texelFetch(field, at).xy, above, t, r == 0u, transmitted);
-        above = t;
+    // runs of BEAM_RUN rows, their loads issued together before the run's steps: only `transmitted`
+    // carries from row to row, and a GPU's column thread (a thousand of them at most) would
+    // otherwise wait out a load's latency at every row (the steps and their order are the twin's)
+    const uint BEAM_RUN = 16u;
+    for (uint r0 = 0u; r0 < k.rows; r0 += BEAM_RUN) {
+        uint t[BEAM_RUN];
+        vec2 f[BEAM_RUN];
+        for (uint i = 0u; i < BEAM_RUN; ++i) {
+            const int at = int(base + min(r0 + i, k.rows - 1u) * k.columns);
+            t[i] = texelFetch(labels, at).r;
+            f[i] = texelFetch(field, at).xy;
+        }
+        for (uint i = 0u; i < BEAM_RUN && r0 + i < k.rows; ++i) {
+            beam[int(base + (r0 + i) * k.columns)] = bmode_beam_step(f[i], above, t[i], r0 + i == 0u, transmitted);
+            above = t[i];
+        }
     }
 }

@@ -4,15 +4,18 @@
 
 // The deform stage of the echographic image: one invocation per image column walks it from the skin
 // down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp), in two
-// dispatches: every column solved on its own (DEFORM_SOLVE), then mapped with its neighbours (DEFORM_MAP).
+// or three dispatches: every column solved on its own (DEFORM_SOLVE), on a GPU its displacements
+// spread sideways (deform_bindings.h says why only there), an
+// invocation a run of step boundaries (DEFORM_SPREAD_PASS: x the column, y the run), then mapped
+// (DEFORM_MAP).
 layout(local_size_x = DEFORM_GROUP_SIZE) in;
 // which pass this pipeline runs: a constant, so each pass's pipeline holds its own code only; and
-// whether the map pass reads what the solve pass wrote through the texel views (a CPU device's) or
-// as storage (a GPU's: deform_bindings.h says why)
+// whether the spread and map passes read what the passes before wrote through the texel views (a
+// CPU device's) or as storage (a GPU's: deform_bindings.h says why; the solve pass never sets it)
 layout(constant_id = 0) const uint VARIANT = DEFORM_SOLVE;
-const uint PASS = VARIANT & DEFORM_MAP;
-// (one comparison: glslang turns && between specialization constants into invalid SPIR-V)
-const bool TEXEL_READS = (VARIANT & (DEFORM_MAP | DEFORM_TEXEL_READS)) == (DEFORM_MAP | DEFORM_TEXEL_READS);
+const uint PASS = VARIANT & (DEFORM_MAP | DEFORM_SPREAD_PASS);
+const bool TEXEL_READS = (VARIANT & DEFORM_TEXEL_READS) == DEFORM_TEXEL_READS;
+const bool SPREAD_LOADED = (VARIANT & DEFORM_SPREAD_LOADED) == DEFORM_SPREAD_LOADED;
 layout(binding = DEFORM_LABELS_BINDING) uniform usampler3D labels;
 layout(std430, binding = DEFORM_PROFILE_BINDING) readonly buffer Profile { vec2 profile[]; };
 layout(std140, binding = DEFORM_TISSUES_BINDING) uniform Tissues { TissueMechanics tissues[DEFORM_TISSUE_CODES]; };
@@ -23,6 +26,7 @@ layout(std430, binding = DEFORM_WALLS_BINDING) buffer Walls { uint walls[]; };
 layout(binding = DEFORM_SCRATCH_TEXELS_BINDING) uniform usamplerBuffer scratch_texels;
 layout(binding = DEFORM_MOVED_TEXELS_BINDING) uniform samplerBuffer moved_texels;
 layout(binding = DEFORM_WALLS_TEXELS_BINDING) uniform usamplerBuffer walls_texels;
+layout(std430, binding = DEFORM_SPREAD_BINDING) buffer Spread { float spread[]; };
 layout(push_constant) uniform Push { DeformParams params; };
 
 uint deform_label(vec3 index)
@@ -59,6 +63,9 @@ vec2 walls_load(uint column, uint boundary)
     return unpackHalf2x16(TEXEL_READS ? texelFetch(walls_texels, int(i)).r : walls[i]);
 }
 void walls_store(uint column, uint boundary, vec2 v) { walls[step_major(column, boundary)] = packHalf2x16(v); }
+float spread_load(uint column, uint boundary) { return spread[step_major(column, boundary)]; }
+void spread_store(uint column, uint boundary, float v) { spread[step_major(column, boundary)] = v; }
+bool spread_loaded() { return SPREAD_LOADED; }
 
 #include "deform_column.h"
 
@@ -67,5 +74,8 @@ void main()
     uint c = gl_GlobalInvocationID.x;
     if (c >= params.columns) return;
     if (PASS == DEFORM_SOLVE) deform_column_solve(c, params);
+    else if (PASS == DEFORM_SPREAD_PASS)
+        for (uint b = gl_GlobalInvocationID.y * DEFORM_SPREAD_RUN; b < (gl_GlobalInvocationID.y + 1u) * DEFORM_SPREAD_RUN; ++b)
+            deform_column_spread(c, b, params);
     else deform_column_map(c, params);
 }

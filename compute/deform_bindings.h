@@ -71,6 +71,9 @@ namespace echosim::kernels {
 #define DEFORM_SCRATCH_TEXELS_BINDING 7
 #define DEFORM_MOVED_TEXELS_BINDING 8
 #define DEFORM_WALLS_TEXELS_BINDING 9
+// float per column per step boundary: the displacement spread sideways (deform_spread) [mm], the
+// spread pass's output, which the map pass reads (a GPU's only: DEFORM_SPREAD_PASS)
+#define DEFORM_SPREAD_BINDING 10
 #define DEFORM_TISSUE_CODES 16
 
 // how far from a closing lumen the tissue sinking and rising into it stretches (halving distance
@@ -96,10 +99,19 @@ namespace echosim::kernels {
 #define DEFORM_SEAM_MM 0.3f
 #define DEFORM_SEAM_CLOSURE 0.9f
 
-// The two passes, each a dispatch of its own pipeline (the kernel's specialization constant 0, bit 0):
-#define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve)
-#define DEFORM_MAP 1u    // then the map, from the columns and their neighbours (deform_column_map)
-#define DEFORM_TEXEL_READS 2u  // (with DEFORM_MAP) the map pass reads the solve's buffers through the texel views
+// The three passes, each a dispatch of its own pipeline (the kernel's specialization constant 0):
+#define DEFORM_SOLVE 0u  // each column on its own (deform_column_solve): an invocation a column
+#define DEFORM_MAP 1u    // last, the map, from the columns and the spread (deform_column_map): an invocation a column
+#define DEFORM_TEXEL_READS 2u  // (with DEFORM_MAP) read the solve's buffers through the texel views
+// On a GPU, between them, the displacements spread sideways (deform_column_spread): an invocation a
+// run of a column's step boundaries, all at once, so the map pass's walk down a column no longer
+// waits at every step on the spread's chain of loads (the neighbours' wall distances, then the
+// displacements they say to blend), which made the map the frame's largest cost there (0.70 of an
+// H200's 1.54 ms at 1024 x 1024). A CPU device's map computes the spread in its walk, as the CPU
+// twin does: there the pass cost more than it saved (lavapipe, 1024 x 1024: 2.2 ms against 1.3).
+#define DEFORM_SPREAD_PASS 4u
+#define DEFORM_SPREAD_RUN 8u     // the step boundaries an invocation of the spread pass takes (y: runs of them)
+#define DEFORM_SPREAD_LOADED 8u  // (with DEFORM_MAP) the spread pass ran: the map reads its spread
 
 #define DEFORM_PAPER_LINEAR 1u  // no labels: one compliance, no decay with depth, no sideways spread
 

@@ -14,9 +14,14 @@
 //                                          its distances [mm] to what fixes it (walk 5), kept as
 //                                          half floats (packHalf2x16) by both includers
 //                                          (both max_steps + 1 boundaries a column)
+//   float spread_load(uint column, uint boundary) / void spread_store(uint column, uint boundary, float v)
+//                                          the displacement spread sideways (deform_column_spread)
+//   bool spread_loaded()                   whether the spread pass ran, or the map spreads in its walk
 //   void map_store(uint pixel, vec2 v)     (source y [mm], gain [dB]) of pixel = row * columns + column
-// and runs deform_column_solve for every column, then (once all are done: deform_column_map reads
-// the neighbours' displacements) deform_column_map for every column.
+// and runs deform_column_solve for every column, then (once all are done: the spread reads the
+// neighbours' displacements) deform_column_map for every column, with or without first
+// deform_column_spread for every column's boundaries 1 to its steps (spread_loaded: the same
+// figures either way, each a pure function of the solve's).
 
 // Whether a scratch entry is a lumen's (a solid's compliance is never negative).
 bool is_lumen(vec4 w) { return w.x < 0.0f; }
@@ -298,6 +303,15 @@ float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
     return sum / weights;
 }
 
+// The spread pass: boundary b of column c (1 to its walk's steps), its distance to the skin or the
+// deep end as the map's walk counts it, spread (deform_spread) into the spread buffer.
+void deform_column_spread(uint c, uint b, DeformParams p)
+{
+    uint steps = deform_steps(deform_profile(c).x, p);
+    if (b == 0u || b > steps) return;
+    spread_store(c, b, deform_spread(c, b, min(float(b), float(steps - b)) * p.step_mm, p));
+}
+
 // Where a lumen's walls meet, the sound meets two walls in one resolution cell: their echoes become
 // one bright line, the sign a sonographer reads as a vein compressed (the live image draws it from
 // the labels: bmode_coapted). The recorded volume holds each wall's echo faint and apart, with a
@@ -306,8 +320,8 @@ float deform_spread(uint c, uint k, float fixed_mm, DeformParams p)
 // `d`: a pixel's distance from the meeting point [mm].
 float deform_seam_db(float d) { return DEFORM_SEAM_DB * max(1.0f - d / DEFORM_SEAM_MM, 0.0f); }
 
-// The second pass, once every column has been solved: the columns' displacements spread sideways
-// (deform_spread), then each pixel of the column mapped back to the depth it came from (inverse
+// The last pass, once every column has been solved (and, spread_loaded, its displacements spread
+// sideways: deform_column_spread): each pixel of the column mapped back to the depth it came from (inverse
 // warp: no holes), with the gain the closed lumens above it make.
 void deform_column_map(uint c, DeformParams p)
 {
@@ -332,9 +346,13 @@ void deform_column_map(uint c, DeformParams p)
     float carried = 0.0f;  // how far the spread carries the lumen the walk is in past its column's place
     bool in_lumen = false;
     float seam = -1e9f;  // where the walls of the last lumen the walk passed met (deform_seam_db) [mm]
+    // the loads a step needs from the passes before are issued a step ahead (w and next, spread and
+    // spread_next), so a GPU's column thread does not wait out each one's latency at its step
     vec4 w = steps > 0u ? scratch_load(c, 0u) : vec4(0.0f);
+    float spread = spread_loaded() && steps > 0u ? spread_load(c, 1u) : 0.0f;
     for (uint k = 0u; k < steps && r < p.rows; ++k) {
         vec4 next = k + 1u < steps ? scratch_load(c, k + 1u) : vec4(0.0f);
+        float spread_next = spread_loaded() && k + 2u <= steps ? spread_load(c, k + 2u) : 0.0f;
         // the boundary below step k: (k + 1) h from the skin, (steps - k - 1) h from the deep end.
         // A lumen keeps the length its own column gives it (an artery its round shape, a vein what
         // the pressure leaves of it) and is carried whole, as far as the spread moved its upper
@@ -342,7 +360,9 @@ void deform_column_map(uint c, DeformParams p)
         // walls take no spread, so it is carried nowhere)
         if (is_lumen(w) && !in_lumen) carried = (top - skin_y - float(k) * h) - moved_load(c, k);
         in_lumen = is_lumen(w);
-        float below = in_lumen ? moved_load(c, k + 1u) + carried : deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
+        float below = in_lumen          ? moved_load(c, k + 1u) + carried
+                      : spread_loaded() ? spread
+                                        : deform_spread(c, k + 1u, min(float(k + 1u), float(steps - k - 1u)) * h, p);
         float bottom = skin_y + float(k + 1u) * h + below;
         float length = bottom - top;
         float shown = across ? (gain + dot(band.weight, sums)) / norm : gain;
@@ -359,6 +379,7 @@ void deform_column_map(uint c, DeformParams p)
         gain += is_lumen(w) ? w.w : 0.0f;
         if (across && k + 1u >= band.steps_with_gain.x && k < band.steps_with_gain.y) sums = deform_gain_step(band, k, sums);
         w = next;
+        spread = spread_next;
     }
     // what the neighbours' lumens below the column's last walked step add
     for (uint k = steps; across && k < band.steps_with_gain.y; ++k) sums = deform_gain_step(band, k, sums);

@@ -16,7 +16,8 @@ class DeformColumns {
 public:
     DeformColumns(const io::Volume* labels, std::span<const ColumnProfile> profile, const TissueTable& tissues, std::vector<uvec2>& scratch,
                   std::uint32_t max_steps, std::vector<float>& moved, std::vector<uint>& walls, std::vector<glm::vec2>& map)
-        : labels_(labels), profile_(profile), tissues_(tissues), scratch_(scratch), max_steps_(max_steps), moved_(moved), walls_(walls), map_(map)
+        : labels_(labels), profile_(profile), tissues_(tissues), scratch_(scratch), max_steps_(max_steps), moved_(moved), walls_(walls),
+          map_(map)
     {
     }
 
@@ -42,6 +43,10 @@ private:
     void moved_store(uint column, uint boundary, float v) { moved_[column * (max_steps_ + 1) + boundary] = v; }
     vec2 walls_load(uint column, uint boundary) const { return unpackHalf2x16(walls_[column * (max_steps_ + 1) + boundary]); }
     void walls_store(uint column, uint boundary, vec2 v) { walls_[column * (max_steps_ + 1) + boundary] = packHalf2x16(v); }
+    // the map spreads in its walk, as a CPU device's kernel does (deform_bindings.h): no spread pass
+    static constexpr bool spread_loaded() { return false; }
+    float spread_load(uint, uint) const { return 0.0f; }
+    void spread_store(uint, uint, float) {}
 
     const io::Volume* labels_;
     std::span<const ColumnProfile> profile_;
@@ -67,7 +72,7 @@ std::vector<glm::vec2> deform_cpu(const io::Volume* labels, std::span<const Colu
     std::vector<std::uint32_t> walls(moved.size());
     std::vector<glm::vec2> map(std::size_t(params.columns) * params.rows);
     kernels_cpu::DeformColumns columns(labels, profile, tissues, scratch, params.max_steps, moved, walls, map);
-    // the two passes of the two dispatches: the map reads the neighbours' solutions
+    // the passes of a CPU device's two dispatches: the map reads the neighbours' solutions
     for (std::uint32_t c = 0; c < params.columns; ++c) columns.deform_column_solve(c, params);
     for (std::uint32_t c = 0; c < params.columns; ++c) columns.deform_column_map(c, params);
     return map;

@@ -73,13 +73,13 @@ std::vector<std::uint32_t> pack_neighbours(const io::Volume& v)
 // The frame's stages as a list of sub-passes that declare what they read and write
 // (gpu/stage_list.hpp), so the barriers between them are the recorder's, not each stage's:
 //
-//   deform: solve ─▶ deform: map ─▶ [B-mode: live scatter ─▶ beam ─▶ axial ─▶ lateral] ─▶ slice+post ─▶ display copy ─▶ [read-back copy]
+//   deform: solve ─▶ deform: spread ─▶ deform: map ─▶ [B-mode: live scatter ─▶ beam ─▶ axial ─▶ lateral] ─▶ slice+post ─▶ display copy ─▶ [read-back copy]
 //
 // (the B-mode stages with generative imaging only). The resources are a slot's (each frame slot has
 // its own); the profile, the parameters and the rows are host-written before the frame is
 // submitted, so no stage declares them.
-enum Resource { kSolved, kMap, kSliced, kImage, kReadback, kFieldA, kCodes, kBeamB, kGenerated };
-enum StageIndex { kSolve, kMapStage, kLiveScatter, kBeam, kAxial, kLateral, kSlice, kDisplayCopy, kReadbackCopy };
+enum Resource { kSolved, kSpreadOut, kMap, kSliced, kImage, kReadback, kFieldA, kCodes, kBeamB, kGenerated };
+enum StageIndex { kSolve, kSpread, kMapStage, kLiveScatter, kBeam, kAxial, kLateral, kSlice, kDisplayCopy, kReadbackCopy };
 
 gpu::StageList frame_stages(std::uint32_t map_reads)
 {
@@ -89,12 +89,13 @@ gpu::StageList frame_stages(std::uint32_t map_reads)
     const VkAccessFlags2 solved_read = map_reads != 0u ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
     constexpr auto texel_read = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
     return gpu::StageList(
-        {{"the deform's solution (scratch, displacements, wall distances)"}, {"the deform map"},
+        {{"the deform's solution (scratch, displacements, wall distances)"}, {"the displacements spread sideways"}, {"the deform map"},
          {"the sliced bytes, grey levels and labels"}, {"the displayed image", true}, {"the read-back buffer"},
          {"the B-mode field (buffer A)"}, {"the live frame's tissue codes"}, {"the B-mode field down the beam (buffer B)"},
          {"the generated grey and tissue bytes"}},
         {{"deform: solve", {}, {{kSolved, compute, storage_write}}},
-         {"deform: map", {{kSolved, compute, solved_read}}, {{kMap, compute, storage_write}}},
+         {"deform: spread", {{kSolved, compute, solved_read}}, {{kSpreadOut, compute, storage_write}}},
+         {"deform: map", {{kSolved, compute, solved_read}, {kSpreadOut, compute, solved_read}}, {{kMap, compute, storage_write}}},
          {"B-mode: live scatter", {{kMap, compute, texel_read}}, {{kFieldA, compute, storage_write}, {kCodes, compute, storage_write}}},
          {"B-mode: beam", {{kFieldA, compute, texel_read}, {kCodes, compute, texel_read}}, {{kBeamB, compute, storage_write}}},
          {"B-mode: axial", {{kBeamB, compute, texel_read}}, {{kFieldA, compute, storage_write}}},
@@ -211,7 +212,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
               {gpu::BindingKind::sampled_image, gpu::BindingKind::storage_buffer, gpu::BindingKind::uniform_buffer,
                gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer, gpu::BindingKind::storage_buffer,
                gpu::BindingKind::storage_buffer, gpu::BindingKind::texel_buffer, gpu::BindingKind::texel_buffer,
-               gpu::BindingKind::texel_buffer},
+               gpu::BindingKind::texel_buffer, gpu::BindingKind::storage_buffer},
               sizeof(kernels::DeformParams)),
       slice_(ctx, kernels::slice_comp, "slice.comp",
              {gpu::BindingKind::sampled_image, gpu::BindingKind::sampled_image, gpu::BindingKind::texel_buffer,
@@ -226,7 +227,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         throw std::invalid_argument("generative imaging reads the labels as texels: make the volume with LabelTexels::make");
     static_assert(DEFORM_LABELS_BINDING == 0 && DEFORM_PROFILE_BINDING == 1 && DEFORM_TISSUES_BINDING == 2 && DEFORM_SCRATCH_BINDING == 3 &&
                       DEFORM_MAP_BINDING == 4 && DEFORM_MOVED_BINDING == 5 && DEFORM_WALLS_BINDING == 6 &&
-                      DEFORM_SCRATCH_TEXELS_BINDING == 7 && DEFORM_MOVED_TEXELS_BINDING == 8 && DEFORM_WALLS_TEXELS_BINDING == 9,
+                      DEFORM_SCRATCH_TEXELS_BINDING == 7 && DEFORM_MOVED_TEXELS_BINDING == 8 && DEFORM_WALLS_TEXELS_BINDING == 9 &&
+                      DEFORM_SPREAD_BINDING == 10,
                   "deform bindings in the order declared above");
     static_assert(SLICE_VOLUME_BINDING == 0 && SLICE_LABELS_BINDING == 1 && SLICE_MAP_BINDING == 2 && SLICE_GREY_BINDING == 3 &&
                       SLICE_LABEL_OUT_BINDING == 4 && SLICE_DISPLAY_BINDING == 5 && SLICE_FRAME_BINDING == 6 && SLICE_ROWS_BINDING == 7 &&
@@ -243,7 +245,8 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         lateral_ = bmode_kernel(ctx, kernels::bmode_lateral_comp, "bmode_lateral.comp");
     }
     deform_.prepare(DEFORM_SOLVE);
-    deform_.prepare(DEFORM_MAP | map_reads_);
+    if (spread_pass()) deform_.prepare(DEFORM_SPREAD_PASS);
+    deform_.prepare(map_variant());
     const echo::TissueTable table = volume_->labelled() ? echo::tissue_mechanics(patient_) : echo::paper_linear_mechanics();
     tissues_.write(std::as_bytes(std::span(table)));
 
@@ -271,6 +274,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         slot.scratch_texels = gpu::TexelView(ctx, slot.scratch, VK_FORMAT_R32G32_UINT, "the deform stage's scratch");
         slot.moved_texels = gpu::TexelView(ctx, slot.moved, VK_FORMAT_R32_SFLOAT, "the deform stage's displacements");
         slot.walls_texels = gpu::TexelView(ctx, slot.walls, VK_FORMAT_R32_UINT, "the deform stage's wall distances");
+        slot.spread = gpu::Buffer(ctx, (spread_pass() ? boundaries : 1) * sizeof(float), storage, gpu::MemoryUse::device_local);
         slot.map = gpu::Buffer(ctx, VkDeviceSize(map_columns_) * plane_.rows * 2 * sizeof(float),
                                storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUse::device_local);
         slot.map_texels = gpu::TexelView(ctx, slot.map, VK_FORMAT_R32G32_SFLOAT, "the deform map");
@@ -283,7 +287,7 @@ EchoImageGpu::EchoImageGpu(const gpu::Context& ctx, std::shared_ptr<const EchoVo
         deform_.bind(s, {gpu::Binding::sampled(volume_->labels(), volume_->nearest()), gpu::Binding::storage(slot.profile),
                          gpu::Binding::uniform(tissues_), gpu::Binding::storage(slot.scratch), gpu::Binding::storage(slot.map),
                          gpu::Binding::storage(slot.moved), gpu::Binding::storage(slot.walls), gpu::Binding::texel(slot.scratch_texels),
-                         gpu::Binding::texel(slot.moved_texels), gpu::Binding::texel(slot.walls_texels)});
+                         gpu::Binding::texel(slot.moved_texels), gpu::Binding::texel(slot.walls_texels), gpu::Binding::storage(slot.spread)});
         // the generated grey bytes, rows of whole words as the lateral pass packs them (a stand-in of one word without)
         const VkDeviceSize generated_bytes = generative ? VkDeviceSize((plane_.columns + 3) / 4) * 4 * plane_.rows : 4;
         slot.generated = gpu::Buffer(ctx, generated_bytes, storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, gpu::MemoryUse::device_local);
@@ -352,7 +356,7 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
         }
     }
     std::uint32_t active = 0;
-    if (warped && stages != Stages::slice_only) active |= 1u << kSolve | 1u << kMapStage;
+    if (warped && stages != Stages::slice_only) active |= 1u << kSolve | (spread_pass() ? 1u << kSpread : 0u) | 1u << kMapStage;
     if (stages != Stages::deform_only) active |= 1u << kSlice;
     if (generative && stages != Stages::deform_only) active |= 1u << kLiveScatter | 1u << kBeam | 1u << kAxial | 1u << kLateral;
     if (all) active |= 1u << kDisplayCopy | (readback_enabled_ ? 1u << kReadbackCopy : 0u);
@@ -371,8 +375,14 @@ void EchoImageGpu::record_frame(VkCommandBuffer cmd, int slot_index, const echo:
             slot.profile.write(std::as_bytes(std::span(profiles)));
             deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_SOLVE);
             break;
-        case kMapStage:  // ...then mapped with their neighbours' solutions
-            deform_.record(cmd, slot_index, bytes_of(k.deform), columns, DEFORM_MAP | map_reads_);
+        case kSpread:  // ...their displacements spread sideways, a run of step boundaries an invocation...
+            deform_.record(cmd, slot_index, bytes_of(k.deform),
+                           gpu::Groups::cover(VkExtent2D{map_columns_, (k.deform.max_steps + DEFORM_SPREAD_RUN) / DEFORM_SPREAD_RUN},
+                                              VkExtent2D{DEFORM_GROUP_SIZE, 1}),
+                           DEFORM_SPREAD_PASS);
+            break;
+        case kMapStage:  // ...then mapped
+            deform_.record(cmd, slot_index, bytes_of(k.deform), columns, map_variant());
             break;
         case kLiveScatter:
             live_->record(cmd, slot_index, {}, gpu::Groups::cover(VkExtent2D{plane_.columns, plane_.rows}, VkExtent2D{BMODE_SCATTER_GROUP_X, BMODE_SCATTER_GROUP_Y}));

@@ -108,7 +108,7 @@ enum class DeformReads { best, storage, texels };
 // (bmode_bindings.h) make the image, and the slice kernel's post stage (SLICE_GENERATED) gives it the
 // scanner's gain, TGC, dynamic range and markers as it gives the sliced one:
 //
-//   deform: solve ─▶ deform: map ─▶ B-mode: live scatter ─▶ beam ─▶ axial ─▶ lateral ─▶ slice+post ─▶ display copy
+//   deform: solve ─▶ spread ─▶ map ─▶ B-mode: live scatter ─▶ beam ─▶ axial ─▶ lateral ─▶ slice+post ─▶ display copy
 //
 // The volume must be labelled; its grey levels are not read. The B-mode model's settings are
 // echo::ScanSpec's defaults (the probe's), at the plane's pixels (echo::bmode_live_params).
@@ -168,6 +168,7 @@ private:
         gpu::TexelView row_texels;  // rows, as the slice kernel reads them
         gpu::Buffer scratch, moved, walls, map, grey, labels;
         gpu::TexelView map_texels;  // the map as the slice kernel reads it
+        gpu::Buffer spread;  // the deform's displacements spread sideways (a GPU's spread pass writes them, its map pass reads them)
         gpu::TexelView scratch_texels, moved_texels, walls_texels;  // as the deform's map pass reads them on a CPU device
         gpu::Buffer display;  // the displayed image's bytes as the slice kernel packs them
         gpu::Image image;
@@ -188,6 +189,9 @@ private:
     std::uint32_t max_steps_ = 0;    // the scratch's steps a column: the deepest walk of depth_range()
     std::uint32_t map_columns_ = 0;  // the deform stage's columns (echo::deform_columns)
     std::uint32_t map_reads_ = 0;    // DEFORM_TEXEL_READS or 0: the map pass's variant bit
+    // the deform's spread pass runs where its buffers are read as storage (a GPU: deform_bindings.h)
+    bool spread_pass() const { return map_reads_ == 0u; }
+    std::uint32_t map_variant() const { return DEFORM_MAP | map_reads_ | (spread_pass() ? DEFORM_SPREAD_LOADED : 0u); }
     gpu::StageList stages_;          // the frame's stages and what each reads and writes (echo_image_gpu.cpp)
     bool readback_enabled_ = false;
     gpu::Buffer tissues_;  // uniform, written once
