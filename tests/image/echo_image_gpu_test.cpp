@@ -8,6 +8,7 @@
 #include "image/echo_image_gpu.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -115,6 +116,54 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
             expect_twins(coarse_pressed, cpu(coarse_frame, true, coarse), "pressed 12 mm, 100 x 125 pixels");
             // the same frame twice: the GPU is deterministic
             EXPECT_EQ(with_labels.render(pool, pressed).rgba, with_labels.render(pool, pressed).rgba);
+        }
+    }
+    EXPECT_EQ(messages->load(), 0u);
+}
+
+// The GPU's timestamps between the stages (enable_stage_timing): a frame names the stages it ran,
+// in order, each with some time, together no more than the frame took from recording to its end;
+// the deform's spread pass only where the map reads storage (a GPU's way), none at rest.
+TEST(EchoImageGpu, StageTimesNameTheStagesAFrameRan)
+{
+    session::Session s;
+    const scene::LegModel leg;
+    const test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, s.probe().rest);
+    echo::EchoFrame rest = *s.view().echo;
+    rest.columns.clear();
+    s.press_and_settle(s.probe().rest, 12.0);
+    const echo::EchoFrame pressed = *s.view().echo;
+    std::shared_ptr<const std::atomic<std::uint32_t>> messages;
+    {
+        gpu::Context ctx(test::lavapipe_options());
+        messages = ctx.validation_counter();
+        gpu::CommandPool pool(ctx);
+        const auto volume = std::make_shared<const EchoVolumeGpu>(pool, v.grey, &v.labels, GreyLayout::sampler);
+        const auto names = [](const std::vector<std::pair<std::string, double>>& times) {
+            std::vector<std::string> n;
+            for (const auto& t : times) n.push_back(t.first);
+            return n;
+        };
+        for (const DeformReads reads : {DeformReads::storage, DeformReads::texels}) {
+            SCOPED_TRACE(reads == DeformReads::storage ? "storage reads" : "texel reads");
+            EchoImageGpu pipeline(ctx, volume, s.image_plane(), s.patient(), reads);
+            EXPECT_TRUE(pipeline.stage_times(0).empty()) << "no times before timing is enabled";
+            pipeline.enable_stage_timing(ctx);
+            const auto start = std::chrono::steady_clock::now();
+            (void)pipeline.render(pool, pressed);
+            const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            const auto times = pipeline.stage_times(0);
+            std::vector<std::string> expected{"deform: solve", "deform: map", "slice+post", "display copy"};
+            if (reads == DeformReads::storage) expected.insert(expected.begin() + 1, "deform: spread");
+            EXPECT_EQ(names(times), expected);
+            double sum = 0;
+            for (const auto& [name, ms] : times) {
+                EXPECT_GT(ms, 0.0) << name;
+                sum += ms;
+            }
+            EXPECT_LE(sum, wall_ms);
+            (void)pipeline.render(pool, rest);
+            EXPECT_EQ(names(pipeline.stage_times(0)), (std::vector<std::string>{"slice+post", "display copy"})) << "at rest";
         }
     }
     EXPECT_EQ(messages->load(), 0u);
