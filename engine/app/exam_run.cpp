@@ -71,6 +71,11 @@ ExamRunResult perform_exam(const PreparedExam& exam, const VolumePair& volumes, 
         o.volume = volumes.volume;
         o.labels = volumes.labels;
         o.imaging = options.imaging ? options.imaging : exam.scenario.imaging;
+        // no frames written: nothing asks the runner for one, so it makes none (no volume on the
+        // GPU: the stations' images are the CPU twin's, below), and the imaging the frames would
+        // have had is the device's choice all the same
+        o.draws = options.frames_per_s != 0;
+        if (!o.draws && !o.imaging) o.imaging = runner::default_imaging(gpu::Context(options.gpu), volumes.labels.get());
         o.trajectory = exam.trajectory;
         o.trajectory_name = exam.trajectory_name;
         o.frames_per_s = options.frames_per_s;

@@ -267,7 +267,7 @@ int main(int argc, char** argv)
                          "the exam's script: a trajectory CSV with an optional last column 'call' (compressible, not-compressible); "
                          "default: the case's shipped correct exam");
     exam_cmd->add_option("--out", exam_args.out, "the report's folder")->required();
-    exam_cmd->add_option("--frames-per-s", exam_args.frames_per_s, "frames written per simulated second (0: images at the stations only)");
+    exam_cmd->add_option("--frames-per-s", exam_args.frames_per_s, "frames written per simulated second (0: images at the stations only, made on the CPU: nothing drawn, no volume on the GPU)");
     exam_cmd->add_option("--trainee", exam_args.trainee, "the trainee's name, for the records");
     exam_cmd->add_option("--records", exam_args.records, "the trainee records database (default: in the user's data folder)");
     exam_cmd->add_flag("--no-records", exam_args.no_records, "do not store the exam in the records");

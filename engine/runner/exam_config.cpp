@@ -19,6 +19,7 @@ RunnerConfig exam_config(ExamOptions o)
         throw std::invalid_argument("exam: duration_s " + std::to_string(o.duration_s) + " s: must be finite and > 0" +
                                     (o.trajectory ? "" : " (there is no trajectory to take it from)"));
     if (o.frames_per_s != 0 && o.frames_dir.empty()) throw std::invalid_argument("exam: frames_per_s given without frames_dir");
+    if (o.frames_per_s != 0 && !o.draws) throw std::invalid_argument("exam: frames_per_s given with draws false (no frame is made)");
 
     RunnerConfig c;
     c.name = "exam";
@@ -28,7 +29,7 @@ RunnerConfig exam_config(ExamOptions o)
         c.session.device = std::make_shared<device::ScriptedDevice>(std::move(*o.trajectory), o.trajectory_name, device::ScriptedDevice::Playback::once);
     c.lock_step_dt_s = o.dt_s;
     c.max_steps = steps_covering(duration, o.dt_s);
-    c.output = Output::offscreen;
+    c.output = o.draws ? Output::offscreen : Output::none;
     c.drawing = Drawing::on_request;
     c.gpu = std::move(o.gpu);
     c.extent = o.extent;

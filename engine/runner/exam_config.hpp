@@ -10,7 +10,9 @@
 //   - the length: `duration_s` of simulated time, or the trajectory's (rounded up to whole steps);
 //   - frames: the offscreen frame (leg + image panel + cue) drawn only at the steps an observer
 //     asks for; with `frames_per_s` > 0 a FrameRecorder (runner/recorders.hpp) writes them to
-//     `frames_dir` at that rate of simulated time;
+//     `frames_dir` at that rate of simulated time; with `draws` false no frame is made at all
+//     (Output::none: no GPU object, no volume uploaded), for an exam whose observers never ask for
+//     one (`echosim exam --frames-per-s 0`: its station images are the CPU twin's);
 //   - observers: the caller's (the exam's scorer through a thin adapter, an ImageRecorder at the
 //     stations' deepest presses, a force log) in `observers`, or added to the runner later.
 //
@@ -48,6 +50,7 @@ struct ExamOptions {
     double dt_s = 1.0 / 60.0;        // simulated seconds a step
     double duration_s = 0;           // 0: the trajectory's end (required without a trajectory)
     double frames_per_s = 0;         // 0: no frames written
+    bool draws = true;               // false: no frame at all (above); frames_per_s must then be 0
     std::filesystem::path frames_dir;
     gpu::ContextOptions gpu;
     VkExtent2D extent{1280, 720};
@@ -56,7 +59,7 @@ struct ExamOptions {
 };
 
 // The configuration (above). Throws std::invalid_argument naming the option at fault (a step or a
-// length that is not finite and positive, frames without a folder).
+// length that is not finite and positive, frames without a folder, frames without drawing).
 RunnerConfig exam_config(ExamOptions options);
 
 // How many steps of `dt_s` cover `duration_s` (rounded up, a hair's tolerance for decimal steps).

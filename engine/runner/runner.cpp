@@ -50,10 +50,7 @@ Runner::Runner(RunnerConfig config) : config_((checked(config), std::move(config
         } else {
             presenter_ = std::make_unique<OffscreenOutput>(*commands_, config_.extent);
         }
-        // unset: generative where it keeps the pace (a GPU) and can read the labels (as texels)
-        const bool generative_fits = config_.labels && ctx_->device_type() != VK_PHYSICAL_DEVICE_TYPE_CPU &&
-                                     config_.labels->voxel_count() <= ctx_->limits().maxTexelBufferElements;
-        imaging_ = config_.imaging.value_or(generative_fits ? echo::Imaging::generative : echo::Imaging::interpolative);
+        imaging_ = config_.imaging.value_or(default_imaging(*ctx_, config_.labels.get()));
         frame_ = std::make_unique<SimulatorFrame>(*ctx_, *commands_, presenter_->format(), *scene_, *config_.volume, config_.labels.get(),
                                                   config_.passes, imaging_);
         frame_->set_volume_pending(config_.volume_pending);
@@ -62,6 +59,13 @@ Runner::Runner(RunnerConfig config) : config_((checked(config), std::move(config
 }
 
 Runner::~Runner() = default;
+
+echo::Imaging default_imaging(const gpu::Context& ctx, const io::Volume* labels)
+{
+    const bool generative_fits = labels && ctx.device_type() != VK_PHYSICAL_DEVICE_TYPE_CPU &&
+                                 labels->voxel_count() <= ctx.limits().maxTexelBufferElements;
+    return generative_fits ? echo::Imaging::generative : echo::Imaging::interpolative;
+}
 
 void Runner::add_observer(std::shared_ptr<Observer> observer)
 {

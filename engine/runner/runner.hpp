@@ -160,6 +160,11 @@ struct RunnerConfig {
     std::shared_ptr<Input> input;
 };
 
+// How the echographic image is made where the configuration leaves it unset: generative where it
+// keeps the pace (a GPU, not a CPU implementation) and can read the labels (as texels), else
+// interpolative.
+echo::Imaging default_imaging(const gpu::Context& ctx, const io::Volume* labels);
+
 class Runner {
 public:
     // Makes what the configuration asks for (above) and attaches its observers. Throws

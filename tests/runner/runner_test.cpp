@@ -130,6 +130,40 @@ TEST(RunnerConfigurations, TheExamStepsThroughTheRunnerAndWritesFramesAtItsRate)
     std::filesystem::remove_all(dir);
 }
 
+// An exam that draws nothing (draws false: `echosim exam --frames-per-s 0`) makes no GPU object, and
+// its session steps as the drawing one's does: the same probe forces and tissue, step by step
+// (drawing reads the session, never moves it). Frames asked for with drawing off are refused.
+TEST(RunnerConfigurations, AnExamThatDrawsNothingMakesNoGpuObjectAndStepsTheSame)
+{
+    const TestVolumes v = small_volume();
+    std::vector<double> forces[2];
+    for (const bool draws : {true, false}) {
+        runner::ExamOptions o = small_exam(v);
+        o.duration_s = 0.25;
+        o.draws = draws;
+        runner::Runner r(runner::exam_config(std::move(o)));
+        EXPECT_EQ(r.context() == nullptr, !draws);
+        EXPECT_EQ(r.frame() == nullptr, !draws);
+        // the probe pressed in over the run, so the force moves
+        session::ProbePlacement placement = r.session().probe();
+        for (int step = 0; r.step(); ++step) {
+            forces[draws ? 0 : 1].push_back(r.session().view().probe_force_N);
+            placement.press_mm = 0.5 * (step + 1);
+            r.session().place_probe(placement);
+        }
+        EXPECT_EQ(r.frames(), 0);  // no observer asked for one
+    }
+    ASSERT_EQ(forces[0].size(), 15u);
+    EXPECT_GT(forces[0].back(), 0.5) << "the probe never pressed";
+    EXPECT_EQ(forces[0], forces[1]);
+    runner::ExamOptions frames_without_drawing = small_exam(v);
+    frames_without_drawing.duration_s = 0.1;
+    frames_without_drawing.draws = false;
+    frames_without_drawing.frames_per_s = 10;
+    frames_without_drawing.frames_dir = testing::TempDir();
+    EXPECT_THROW(runner::exam_config(std::move(frames_without_drawing)), std::invalid_argument);
+}
+
 // The frames are written on the recorder's own thread: a frame that cannot be written (its name
 // taken by a folder) still ends the run with an error naming the file, the frames before it kept.
 TEST(RunnerConfigurations, AFrameThatCannotBeWrittenEndsTheRunNamingIt)
