@@ -4,10 +4,9 @@
 
 // The deform stage of the echographic image: one invocation per image column walks it from the skin
 // down (deform_column.h, shared line for line with the CPU twin engine/echo/deform_cpu.cpp), in two
-// or three dispatches: every column solved on its own (DEFORM_SOLVE), on a GPU its displacements
-// spread sideways (deform_bindings.h says why only there), an
-// invocation a run of step boundaries (DEFORM_SPREAD_PASS: x the column, y the run), then mapped
-// (DEFORM_MAP).
+// or three dispatches: every column solved on its own (DEFORM_SOLVE); on a GPU its displacements
+// spread sideways, an invocation a run of step boundaries (DEFORM_SPREAD_PASS: x the column, y the
+// run; deform_bindings.h says why only there); then mapped (DEFORM_MAP).
 layout(local_size_x = DEFORM_GROUP_SIZE) in;
 // which pass this pipeline runs: a constant, so each pass's pipeline holds its own code only; and
 // whether the spread and map passes read what the passes before wrote through the texel views (a

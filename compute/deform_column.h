@@ -321,8 +321,8 @@ void deform_column_spread(uint c, uint b, DeformParams p)
 float deform_seam_db(float d) { return DEFORM_SEAM_DB * max(1.0f - d / DEFORM_SEAM_MM, 0.0f); }
 
 // The last pass, once every column has been solved (and, spread_loaded, its displacements spread
-// sideways: deform_column_spread): each pixel of the column mapped back to the depth it came from (inverse
-// warp: no holes), with the gain the closed lumens above it make.
+// sideways: deform_column_spread): each pixel of the column mapped back to the depth it came from
+// (inverse warp: no holes), with the gain the closed lumens above it make.
 void deform_column_map(uint c, DeformParams p)
 {
     vec2 profile = deform_profile(c);
