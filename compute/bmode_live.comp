@@ -28,28 +28,21 @@ uint live_tissue(float x, float y, SliceParams s)
     return inside && t < k.tissue_count ? t : 0u;
 }
 
-// the source depth of row r at lateral position x between the map's columns `t` (map_between: the
-// nearer column's where the two straddle a closed lumen, as the slice stage reads it)
-float live_source_y(uint r, MapTap t, float x, SliceParams s)
-{
-    const int row = int(r * s.map_columns);
-    const vec2 left = texelFetch(map, row + int(t.left)).xy, right = texelFetch(map, row + int(t.right)).xy;
-    const float lerped = map_between(left, right, t.right_weight, false).x;
-    return map_straddles(left, right) ? map_between(left, right, t.right_weight, lumen_in(live_tissue(x, lerped, s), s)).x : lerped;
-}
-
 void main()
 {
     const uint c = gl_GlobalInvocationID.x, r = gl_GlobalInvocationID.y;
     if (c >= k.columns || r >= k.rows) return;
     const SliceParams s = live.slice;
-    const float x = pixel_x(c, s.pixel_x_mm, s.width_mm);
     float source_y = pixel_y(r, s.pixel_y_mm), above_y = source_y;
     if ((s.flags & SLICE_WARPED) != 0u) {
         const MapTap t = map_tap(c, s);
-        source_y = live_source_y(r, t, x, s);
-        above_y = r > 0u ? live_source_y(r - 1u, t, x, s) : source_y;
+        const int row = int(r * s.map_columns);
+        source_y = map_between(texelFetch(map, row + int(t.left)).xy, texelFetch(map, row + int(t.right)).xy, t.right_weight).x;
+        const int row_above = int(max(r, 1u) - 1u) * int(s.map_columns);
+        above_y = r > 0u ? map_between(texelFetch(map, row_above + int(t.left)).xy, texelFetch(map, row_above + int(t.right)).xy, t.right_weight).x
+                         : source_y;
     }
+    const float x = pixel_x(c, s.pixel_x_mm, s.width_mm);
     uint t = live_tissue(x, source_y, s);
     // (the tissue halfway across a skip looked up only where the map skips: a CPU device's lanes
     // then fetch it only where some lane of theirs needs it)

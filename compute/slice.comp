@@ -56,7 +56,6 @@ void main()
         uint c = min(c0 + j, s.columns - 1u);
         uint i = r * s.columns + c;
         vec2 m = vec2(y, 0.0);
-        const float x = pixel_x(c, s.pixel_x_mm, s.width_mm);
         if (warped) {
             MapTap t = map_tap(c, s);
             vec2 left = taps[0], right = taps[0];
@@ -64,14 +63,9 @@ void main()
                 left = t.left == first + k ? taps[k] : left;
                 right = t.right == first + k ? taps[k] : right;
             }
-            m = map_between(left, right, t.right_weight, false);
-            if (map_straddles(left, right)) {  // (few pixels: the label looked up only there)
-                ivec3 v = ivec3(floor(vec3(s.probe_to_index * vec4(x, m.x, 0.0, 1.0)) + 0.5));
-                bool in_map = all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, label_size));
-                m = map_between(left, right, t.right_weight, lumen_in(in_map ? texelFetch(labels, v, 0).r : 0u, s));
-            }
+            m = map_between(left, right, t.right_weight);
         }
-        vec3 index = vec3(s.probe_to_index * vec4(x, m.x, 0.0, 1.0));
+        vec3 index = vec3(s.probe_to_index * vec4(pixel_x(c, s.pixel_x_mm, s.width_mm), m.x, 0.0, 1.0));
         float grey = 0.0;
         if ((FLAGS & SLICE_GENERATED) != 0u) {
             // the live image already shows what the pressed tissue does to the sound below it

@@ -56,8 +56,6 @@ struct SliceParams {
     uint volume_y;
     uint volume_z;
     uint fold_bits;    // a packed volume's folds (packed_texel): at most 2^fold_bits
-    uint lumen_codes;  // bit t: tissue code t is a vessel's lumen (map_between; 0 without labels)
-    uint pad0, pad1, pad2;
 };
 
 // A frame's parameters of the fused slice and post stages (a uniform buffer: more than push
@@ -145,23 +143,17 @@ KERNEL_FN uint slice_taps(float map_step)
 KERNEL_FN uint slice_warped_flags(float map_step) { return SLICE_WARPED | (slice_taps(map_step) << SLICE_TAPS_SHIFT); }
 
 // The deform map between two of its columns (map_tap's), lerped; but where the two columns' sources
-// lie further apart than a smooth field puts neighbours (map_straddles: SLICE_MAP_JUMP_MM) and the
-// lerp lands in a lumen (`lerp_in_lumen`: the tissue at the lerped source, lumen_in), they straddle
-// a closed lumen's meeting walls, one column mapping above it and the other below: the lerp would
-// draw a dark seam where the walls meet, so the nearer column's source serves. Only then: beside a
-// closing vein's ends the columns' sources part as far where the tissue shears (one column sinks
-// with the vein, its neighbour less), and there the nearer source tore the image along the middle
-// between them, a line from the vein's end up to the fat. The gain is lerped either way: it belongs
-// to the beam, which varies smoothly across (the deform stage blends it so), and the walls' one echo
-// (its gain) then runs from one column's meeting point to the next's instead of stepping at the
-// middle between them.
+// lie further apart than a smooth field puts neighbours (SLICE_MAP_JUMP_MM), they straddle a closed
+// lumen's meeting walls, one column mapping above it and the other below: a lerp would land in the
+// closed lumen and draw a dark seam where the walls meet, so the nearer column's source serves.
+// The gain is lerped there too: it belongs to the beam, which varies smoothly across (the deform
+// stage blends it so), and the walls' one echo (its gain) then runs from one column's meeting point
+// to the next's instead of stepping at the middle between them.
 #define SLICE_MAP_JUMP_MM 1.0f
-KERNEL_FN bool map_straddles(vec2 left, vec2 right) { return abs(left.x - right.x) > SLICE_MAP_JUMP_MM; }
-KERNEL_FN bool lumen_in(uint code, SliceParams p) { return code < 32u && ((p.lumen_codes >> code) & 1u) != 0u; }
-KERNEL_FN vec2 map_between(vec2 left, vec2 right, float right_weight, bool lerp_in_lumen)
+KERNEL_FN vec2 map_between(vec2 left, vec2 right, float right_weight)
 {
     vec2 lerped = mix(left, right, right_weight);
-    if (lerp_in_lumen && map_straddles(left, right)) return vec2(right_weight < 0.5f ? left.x : right.x, lerped.y);
+    if (abs(left.x - right.x) > SLICE_MAP_JUMP_MM) return vec2(right_weight < 0.5f ? left.x : right.x, lerped.y);
     return lerped;
 }
 

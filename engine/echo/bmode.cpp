@@ -306,8 +306,8 @@ BModeImage synthesize_live(const io::Volume& labels, const kernels::BModeParams&
                                     std::to_string(std::size_t(slice.map_columns) * slice.rows));
     const kernels::BModePose f = bmode_pose(pressed);
     return run_twin(params, f, [&](std::uint32_t c, std::uint32_t r) {
-        const SliceSample s = slice_sample(slice, map, &labels, c, r);
-        const float above_y = r > 0 ? slice_sample(slice, map, &labels, c, r - 1).map.x : s.map.x;
+        const SliceSample s = slice_sample(slice, map, c, r);
+        const float above_y = r > 0 ? slice_sample(slice, map, c, r - 1).map.x : s.map.x;
         std::uint32_t t = label_at(labels, s.index);
         // (as the kernel: the tissue halfway across a skip looked up only where the map skips)
         if (s.map.x - above_y > BMODE_COAPTED_SKIP_MM) {

@@ -9,7 +9,6 @@
 #include <glm/matrix.hpp>
 
 #include "echo/bmode.hpp"
-#include "echo/tissue_mechanics.hpp"
 
 namespace echosim::echo {
 
@@ -154,12 +153,6 @@ KernelParams make_kernel_params(const io::Volume& grid, const ImagePlane& plane,
                std::uint32_t(grid.size[1]),
                std::uint32_t(grid.size[2]),
                kernels::packed_fold_bits(std::uint32_t(grid.size[0]))};
-    // the lumens' codes (where a lerp between two map columns must not land: kernels::map_between)
-    if (labelled) {
-        const TissueTable table = tissue_mechanics(patient);
-        for (std::uint32_t code = 0; code < table.size() && code < 32; ++code)
-            if (kernels::is_lumen_tissue(table[code])) k.slice.lumen_codes |= 1u << code;
-    }
     k.post.columns = plane.columns;
     k.post.rows = plane.rows;
     k.post.pixel_x_mm = px;

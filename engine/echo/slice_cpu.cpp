@@ -70,7 +70,7 @@ std::vector<std::uint8_t> slice_labels(const io::Volume& v, const Pose& pose, co
     });
 }
 
-SliceSample slice_sample(const kernels::SliceParams& p, std::span<const float> map, const io::Volume* labels, std::uint32_t c, std::uint32_t r)
+SliceSample slice_sample(const kernels::SliceParams& p, std::span<const float> map, std::uint32_t c, std::uint32_t r)
 {
     using namespace kernels;
     SliceSample s{pixel_x(c, p.pixel_x_mm, p.width_mm), vec2(pixel_y(r, p.pixel_y_mm), 0.0f), vec3(0.0f)};
@@ -79,11 +79,7 @@ SliceSample slice_sample(const kernels::SliceParams& p, std::span<const float> m
         const std::size_t row_start = std::size_t(r) * p.map_columns;
         const vec2 left(map[2 * (row_start + t.left)], map[2 * (row_start + t.left) + 1]);
         const vec2 right(map[2 * (row_start + t.right)], map[2 * (row_start + t.right) + 1]);
-        s.map = map_between(left, right, t.right_weight, false);
-        if (map_straddles(left, right)) {
-            const vec3 lerped = vec3(p.probe_to_index * vec4(s.x, s.map.x, 0.0f, 1.0f));
-            s.map = map_between(left, right, t.right_weight, labels && lumen_in(label_at(*labels, lerped), p));
-        }
+        s.map = map_between(left, right, t.right_weight);
     }
     s.index = vec3(p.probe_to_index * vec4(s.x, s.map.x, 0.0f, 1.0f));
     return s;
@@ -113,7 +109,7 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
     for (std::uint32_t r = 0; r < p.rows; ++r)
         for (std::uint32_t c = 0; c < p.columns; ++c) {
             const std::size_t i = std::size_t(r) * p.columns + c;
-            const SliceSample sample = slice_sample(p, map, labels, c, r);
+            const SliceSample sample = slice_sample(p, map, c, r);
             if (warped) out.gain[i] = sample.map.y;
             const vec3 index = sample.index;
             if (inside_volume(index, size)) {

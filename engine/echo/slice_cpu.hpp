@@ -33,15 +33,13 @@ SliceOutput slice_stage_cpu(const io::Volume& volume, const io::Volume* labels, 
 // Where pixel (c, r) of a frame samples, as the slice kernel and the live B-mode kernel
 // (compute/bmode_live.comp) read it: its lateral position `x` [mm], the deform map's entry between
 // its map columns (source depth [mm], gain [dB]; the pixel's own depth and 0 dB unwarped), and that
-// point as a continuous voxel index. `map` as slice_stage_cpu's (checked there); `labels` (or none)
-// say where two map columns straddle a closed lumen (kernels::map_between).
+// point as a continuous voxel index. `map` as slice_stage_cpu's (checked there).
 struct SliceSample {
     float x;
     glm::vec2 map;
     glm::vec3 index;
 };
-SliceSample slice_sample(const kernels::SliceParams& params, std::span<const float> map, const io::Volume* labels, std::uint32_t c,
-                         std::uint32_t r);
+SliceSample slice_sample(const kernels::SliceParams& params, std::span<const float> map, std::uint32_t c, std::uint32_t r);
 // The tissue code of `labels` (uint8) at the voxel nearest a continuous index; 0 outside.
 std::uint8_t label_at(const io::Volume& labels, const glm::vec3& index);
 
