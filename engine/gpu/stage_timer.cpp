@@ -49,7 +49,7 @@ void StageTimer::end(VkCommandBuffer cmd, int slot)
 
 std::vector<double> StageTimer::stage_ms(int slot) const
 {
-    std::vector<double> ms(stages_, 0.0);
+    std::vector<double> ms(stages_, -1.0);
     const std::uint32_t marked = marked_[std::size_t(slot)];
     if (marked == 0) return ms;
     std::vector<std::uint64_t> ticks(stages_ + 1, 0);

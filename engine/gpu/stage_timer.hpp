@@ -25,8 +25,8 @@ public:
     void begin(VkCommandBuffer cmd, int slot);                     // the slot's marks cleared
     void mark(VkCommandBuffer cmd, int slot, std::size_t stage);  // stage starts (after its barriers)
     void end(VkCommandBuffer cmd, int slot);                       // the last stage done
-    // Each stage's milliseconds in the slot's last frame (0 for a stage not recorded in it); valid
-    // once that frame's fence has signalled.
+    // Each stage's milliseconds in the slot's last frame (-1 for a stage not recorded in it; a
+    // stage quicker than a tick reads 0); valid once that frame's fence has signalled.
     std::vector<double> stage_ms(int slot) const;
 
 private:

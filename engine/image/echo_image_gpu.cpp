@@ -435,7 +435,7 @@ std::vector<std::pair<std::string, double>> EchoImageGpu::stage_times(int slot) 
     if (!timer_) return times;
     const std::vector<double> ms = timer_->stage_ms(slot);
     for (std::size_t i = 0; i < ms.size(); ++i)
-        if (ms[i] > 0) times.emplace_back(stages_.stage(i).name, ms[i]);
+        if (ms[i] >= 0) times.emplace_back(stages_.stage(i).name, ms[i]);
     return times;
 }
 
