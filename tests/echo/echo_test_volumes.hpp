@@ -12,6 +12,7 @@
 #include "echo/phantom.hpp"
 #include "io/nrrd.hpp"
 #include "scene/leg.hpp"
+#include "session/session.hpp"
 
 namespace echosim::test {
 
@@ -47,6 +48,20 @@ inline LabelledVolume phantom_volume(const scene::LegModel& leg, echo::Case whic
                 g[at] = std::uint8_t(t == echo::Tissue::outside ? 0 : 40 + (std::uint32_t(t) * 13 + hash) % 200);
             }
     return v;
+}
+
+// The session's echographic frames at its probe's rest pose: at rest (no deform: the columns
+// cleared) and pressed `press_mm` and settled (the session is left so).
+struct RestAndPressed {
+    echo::EchoFrame rest, pressed;
+};
+inline RestAndPressed rest_and_pressed(session::Session& s, double press_mm)
+{
+    RestAndPressed f{*s.view().echo, {}};
+    f.rest.columns.clear();
+    s.press_and_settle(s.probe().rest, press_mm);
+    f.pressed = *s.view().echo;
+    return f;
 }
 
 }  // namespace echosim::test

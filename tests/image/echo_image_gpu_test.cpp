@@ -64,10 +64,7 @@ TEST(EchoImageGpu, EachKernelMatchesItsCpuTwin)
     session::Session s;
     const scene::LegModel leg;
     const test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, s.probe().rest);
-    echo::EchoFrame rest = *s.view().echo;
-    rest.columns.clear();
-    s.press_and_settle(s.probe().rest, 12.0);
-    echo::EchoFrame pressed = *s.view().echo;
+    const auto [rest, pressed] = test::rest_and_pressed(s, 12.0);
     ASSERT_GT(s.view().probe_force_N, 1.0);
     echo::ScannerSettings scanner;
     scanner.gain_db = 4;
@@ -129,10 +126,7 @@ TEST(EchoImageGpu, StageTimesNameTheStagesAFrameRan)
     session::Session s;
     const scene::LegModel leg;
     const test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, s.probe().rest);
-    echo::EchoFrame rest = *s.view().echo;
-    rest.columns.clear();
-    s.press_and_settle(s.probe().rest, 12.0);
-    const echo::EchoFrame pressed = *s.view().echo;
+    const auto [rest, pressed] = test::rest_and_pressed(s, 12.0);
     std::shared_ptr<const std::atomic<std::uint32_t>> messages;
     {
         gpu::Context ctx(test::lavapipe_options());

@@ -49,10 +49,7 @@ TEST(GenerativeImage, MatchesItsCpuTwinAtRestAndPressed)
     session::Session s;
     const scene::LegModel leg;
     const test::LabelledVolume v = test::phantom_volume(leg, echo::Case::healthy, s.probe().rest);
-    echo::EchoFrame rest = *s.view().echo;
-    rest.columns.clear();
-    s.press_and_settle(s.probe().rest, 12.0);
-    const echo::EchoFrame pressed = *s.view().echo;
+    const auto [rest, pressed] = test::rest_and_pressed(s, 12.0);
     echo::ScannerSettings scanner;
     scanner.gain_db = 3;
 
